@@ -1,0 +1,27 @@
+# The front door. `make report` and `make test` work on a fresh Debian 12 machine as root.
+.PHONY: all deps build debug test report bench clean
+
+all: build
+
+deps:
+	@scripts/install-deps
+
+build: deps
+	@cmake --preset release >/dev/null
+	@cmake --build --preset release
+
+debug: deps
+	@cmake --preset debug >/dev/null
+	@cmake --build --preset debug
+
+test: debug
+	@ctest --preset debug
+
+report: build
+	@build/release/specula report --out report
+
+bench: build
+	@build/release/bench/specula_bench
+
+clean:
+	rm -rf build report

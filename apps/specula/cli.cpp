@@ -1,0 +1,57 @@
+#include "cli.h"
+
+#include <fmt/format.h>
+#include <iostream>
+
+#include "specula/error.h"
+#include "specula/io/values.h"
+
+namespace specula::cli {
+
+void ModelOptions::add_to(CLI::App& command, bool with_form) {
+  command.add_option("--model,-m", id, "Model id (see `specula models`)")->required();
+  command.add_option("--param,-p", params, "Parameter as NAME=VALUE, repeatable (e.g. -p n=20)");
+  if (with_form)
+    command.add_option("--form", form, "rv (c = R·V) or nh (c = N·H); default: the model's own");
+}
+
+ParamValues ModelOptions::param_values() const {
+  ParamValues values;
+  for (const auto& p : params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InvalidArgument(fmt::format("malformed --param '{}': expected NAME=VALUE", p));
+    const std::string name = p.substr(0, eq);
+    values[name] = io::parse_number(std::string_view(p).substr(eq + 1), "--param " + name);
+  }
+  return values;
+}
+
+std::optional<Form> ModelOptions::form_override() const {
+  if (form.empty()) return std::nullopt;
+  return parse_form(form);
+}
+
+Model ModelOptions::make() const { return make_model(id, param_values(), form_override()); }
+
+void OutputOptions::add_to(CLI::App& command) {
+  command.add_option("--format", format, "csv (default) or json")
+      ->check(CLI::IsMember({"csv", "json"}));
+  command.add_option("--round", round, "Print numbers with this many decimals (default: full precision)")
+      ->check(CLI::Range(0, 17));
+  command.add_option("--out,-o", out, "Write to FILE (atomically) instead of stdout");
+}
+
+void OutputOptions::emit(const io::Table& table) const {
+  write_output(out, format == "json" ? io::to_json(table, round) : io::to_csv(table, round));
+}
+
+void write_output(const std::string& out, const std::string& text) {
+  if (out.empty()) {
+    std::cout << text << std::flush;
+  } else {
+    io::write_file_atomically(out, text);
+  }
+}
+
+}  // namespace specula::cli

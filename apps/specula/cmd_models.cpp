@@ -1,0 +1,72 @@
+// specula models: the catalogue, as a table for people or JSON for programs.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+namespace specula::cli {
+namespace {
+
+std::string params_text(const ModelInfo& m) {
+  std::string text;
+  for (const auto& p : m.params)
+    text += fmt::format("{}{}={:g} {}", text.empty() ? "" : "  ", p.name, p.default_value, p.range_text());
+  return text;
+}
+
+std::string models_table() {
+  std::size_t id_width = 2, params_width = 6;
+  for (const auto& m : models()) {
+    id_width = std::max(id_width, m.id.size());
+    params_width = std::max(params_width, params_text(m).size());
+  }
+  auto line = [&](auto id, auto kind, auto form, auto norm, auto params, auto summary) {
+    return fmt::format("{:<{}}  {:<4}  {:<4}  {:<7}  {:<{}}  {}\n", id, id_width, kind, form, norm,
+                       params, params_width, summary);
+  };
+  std::string out = line("id", "kind", "form", "norm", "params", "summary");
+  for (const auto& m : models())
+    out += line(m.id, to_string(m.kind), m.kind == ModelKind::lobe ? to_string(m.form) : "-",
+                m.kind == ModelKind::lobe ? to_string(m.normalization) : "-", params_text(m), m.summary);
+  return out;
+}
+
+std::string models_json() {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& m : models()) {
+    nlohmann::ordered_json params = nlohmann::ordered_json::array();
+    for (const auto& p : m.params)
+      params.push_back({{"name", p.name},
+                        {"default", p.default_value},
+                        {"min", p.min},
+                        {"max", p.max},
+                        {"min_exclusive", p.min_exclusive},
+                        {"meaning", p.meaning}});
+    nlohmann::ordered_json entry = {{"id", m.id},         {"name", m.name},
+                                    {"kind", to_string(m.kind)}, {"summary", m.summary},
+                                    {"source", m.source}, {"params", params}};
+    if (m.kind == ModelKind::lobe) {
+      entry["form"] = to_string(m.form);
+      entry["normalization"] = to_string(m.normalization);
+      entry["coef"] = m.coef_formula;
+    }
+    list.push_back(std::move(entry));
+  }
+  return list.dump(2) + "\n";
+}
+
+}  // namespace
+
+void add_models_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("models", "List every model: id, kind, form, normalization, parameters");
+  cmd->footer(
+      "Lobe models are F(c) with a form (rv: c = R·V, nh: c = N·H) and a coefficient k;\n"
+      "full BRDFs take directions. Example:\n  specula models\n  specula models --json | jq '.[].id'");
+  auto json = std::make_shared<bool>(false);
+  auto out = std::make_shared<std::string>();
+  cmd->add_flag("--json", *json, "Print JSON instead of a table");
+  cmd->add_option("--out,-o", *out, "Write to FILE (atomically) instead of stdout");
+  cmd->callback([json, out] { write_output(*out, *json ? models_json() : models_table()); });
+}
+
+}  // namespace specula::cli

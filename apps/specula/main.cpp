@@ -1,0 +1,35 @@
+// specula: design, check and ship energy-conserving specular lobes. One command per file.
+#include <fmt/format.h>
+#include <iostream>
+
+#include "cli.h"
+#include "specula/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"specula: design, check and ship fast, energy-conserving specular lobes.\n"
+               "Run `specula COMMAND --help` for a command's options and an example.",
+               "specula"};
+  app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("specula: error: ") + e.what() + " (see --help)\n";
+  });
+  specula::cli::add_models_command(app);
+  specula::cli::add_eval_command(app);
+  specula::cli::add_normalize_command(app);
+  specula::cli::add_report_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  } catch (const specula::InvalidArgument& e) {
+    std::cerr << "specula: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "specula: internal error: " << e.what() << '\n';
+    return 3;
+  }
+  return 0;
+}

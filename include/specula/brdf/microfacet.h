@@ -1,0 +1,51 @@
+#pragma once
+// Shared pieces of microfacet BRDFs (MATH.md §2, "Cook-Torrance parts").
+#include <algorithm>
+
+#include "specula/brdf/vec3.h"
+
+namespace specula::microfacet {
+
+/// tan²δ from cos δ, δ the angle between N and H.
+template <std::floating_point T>
+constexpr T tan2_from_cos(T cos_delta) noexcept {
+  const T c2 = cos_delta * cos_delta;
+  return (T(1) - c2) / c2;
+}
+
+/// Beckmann's exp(−tan²δ/m²) / (m² cos⁴δ), without the 1/π of the normalized NDF.
+template <std::floating_point T>
+T beckmann_unnormalized(T cos_delta, T m) noexcept {
+  const T c2 = cos_delta * cos_delta;
+  return std::exp(-tan2_from_cos(cos_delta) / (m * m)) / (m * m * c2 * c2);
+}
+
+/// Cook & Torrance's V-cavity masking-shadowing G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)).
+template <std::floating_point T>
+constexpr T g_vcavity(T nh, T nv, T nl, T vh) noexcept {
+  return std::min({T(1), T(2) * nh * nv / vh, T(2) * nh * nl / vh});
+}
+
+/// Schlick's Fresnel F₀ + (1 − F₀)(1 − V·H)⁵.
+template <std::floating_point T>
+constexpr T fresnel_schlick(T vh, T f0) noexcept {
+  const T m = T(1) - vh;
+  const T m2 = m * m;
+  return f0 + (T(1) - f0) * m2 * m2 * m;
+}
+
+/// Unpolarized dielectric Fresnel (Cook & Torrance 1982, eq. 8) with η from F₀:
+/// η = (1 + √F₀)/(1 − √F₀). F₀ = 1 (η → ∞) is the perfect mirror, F ≡ 1.
+template <std::floating_point T>
+T fresnel_dielectric(T vh, T f0) noexcept {
+  if (f0 >= T(1)) return T(1);
+  const T r = std::sqrt(f0);
+  const T eta = (T(1) + r) / (T(1) - r);
+  const T c = vh;
+  const T g = std::sqrt(eta * eta + c * c - T(1));
+  const T a = (g - c) / (g + c);
+  const T b = (c * (g + c) - T(1)) / (c * (g - c) + T(1));
+  return T(0.5) * a * a * (T(1) + b * b);
+}
+
+}  // namespace specula::microfacet

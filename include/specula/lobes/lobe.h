@@ -1,0 +1,37 @@
+#pragma once
+// What every lobe shares: the cosine convention and the two forms (MATH.md §1 "Conventions").
+//
+// A lobe is F(c) of one cosine c ∈ [0, 1] with F(1) = 1. Every lobe family is a small struct
+// holding its parameters, templated on float or double, with
+//   T operator()(T c)           F(c); c ≤ 0 gives 0, c > 1 is clamped to 1 (round-off)
+//   T at_log_cos(T u)           F at u = −ln c ≥ 0, exact for narrow lobes where 1 − c underflows
+//   T half_max_log_cos()        the u where F falls to ½: the lobe's width, a scale for integrals
+//   T support_log_cos()         the u beyond which F = 0 (+∞ if none)
+// Evaluation is header-only, allocation-free and noexcept: fit for a renderer's inner loop.
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <limits>
+#include <numbers>
+
+namespace specula {
+
+/// How a lobe becomes a BRDF f = k·F(c): `rv` uses c = R·V (Phong), `nh` uses c = N·H (Blinn).
+enum class Form { rv, nh };
+
+constexpr const char* to_string(Form form) noexcept { return form == Form::rv ? "rv" : "nh"; }
+
+}  // namespace specula
+
+namespace specula::lobes {
+
+/// c clamped to [0, 1]; NaN passes through.
+template <std::floating_point T>
+constexpr T clamp_cos(T c) noexcept {
+  return c < T(0) ? T(0) : (c > T(1) ? T(1) : c);
+}
+
+template <std::floating_point T>
+inline constexpr T kInfinity = std::numeric_limits<T>::infinity();
+
+}  // namespace specula::lobes

@@ -1,0 +1,45 @@
+#pragma once
+// Every lobe family, and `Lobe`: any of them chosen at run time (the registry's view).
+#include <iterator>
+#include <span>
+#include <variant>
+
+#include "specula/lobes/gauss.h"
+#include "specula/lobes/log.h"
+#include "specula/lobes/power.h"
+#include "specula/lobes/schlick.h"
+
+namespace specula::lobes {
+
+using Lobe = std::variant<Power<double>, Schlick<double>, SchlickModified<double>, Gauss<double>,
+                          Log<double>>;
+
+/// The family's name as tables and the CLI print it.
+inline const char* family_name(const Lobe& lobe) noexcept {
+  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log"};
+  static_assert(std::size(names) == std::variant_size_v<Lobe>);
+  return names[lobe.index()];
+}
+
+/// F(c) for a run-time lobe.
+inline double eval(const Lobe& lobe, double c) noexcept {
+  return std::visit([c](const auto& l) { return l(c); }, lobe);
+}
+
+inline double at_log_cos(const Lobe& lobe, double u) noexcept {
+  return std::visit([u](const auto& l) { return l.at_log_cos(u); }, lobe);
+}
+
+/// out[i] = F(c[i]) for i < min(c.size(), out.size()). The per-family loop is what a SIMD
+/// back end replaces; the dispatch happens once per batch, not per value.
+template <class L, std::floating_point T>
+void eval_batch(const L& lobe, std::span<const T> c, std::span<T> out) noexcept {
+  const std::size_t count = std::min(c.size(), out.size());
+  for (std::size_t i = 0; i < count; ++i) out[i] = lobe(c[i]);
+}
+
+inline void eval_batch(const Lobe& lobe, std::span<const double> c, std::span<double> out) noexcept {
+  std::visit([&](const auto& l) { eval_batch(l, c, out); }, lobe);
+}
+
+}  // namespace specula::lobes

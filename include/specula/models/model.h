@@ -1,0 +1,125 @@
+#pragma once
+// The model catalogue (MATH.md §2): every model with its id, parameters, default form and
+// normalization, and `Model`, a model with its parameter values bound, ready to evaluate.
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "specula/brdf/cook_torrance.h"
+#include "specula/brdf/ggx.h"
+#include "specula/brdf/lambert.h"
+#include "specula/brdf/lobe_brdf.h"
+#include "specula/brdf/ward.h"
+#include "specula/lobes/lobes.h"
+
+namespace specula {
+
+struct ParamInfo {
+  std::string_view name;
+  double default_value;
+  double min;  ///< valid range [min, max], or (min, max] when min_exclusive
+  double max;
+  bool min_exclusive;
+  std::string_view meaning;
+
+  bool accepts(double value) const noexcept {
+    return (min_exclusive ? value > min : value >= min) && value <= max;
+  }
+  std::string range_text() const;  ///< e.g. "(0, 1e9]"
+};
+
+enum class ModelKind { lobe, brdf };
+
+/// How a lobe model's k is defined.
+enum class Normalization {
+  none,     ///< k = 1: the bare lobe
+  exact,    ///< k from the exact closed form (normalize/closed_form.h)
+  formula   ///< k from a published formula, exact or not (e.g. the paper's fit)
+};
+
+const char* to_string(ModelKind kind) noexcept;
+const char* to_string(Normalization normalization) noexcept;
+
+using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Lambert>;
+
+/// A lobe model: f = k·F(c), c from the form (the run-time twin of LobeBrdf<L>).
+struct LobeModel {
+  lobes::Lobe lobe;
+  Form form = Form::rv;
+  double k = 1;
+};
+
+struct ModelInfo {
+  std::string_view id;
+  std::string_view name;
+  std::string_view summary;
+  std::string_view source;  ///< where the formula comes from
+  ModelKind kind;
+  Form form;                ///< default form (lobe models)
+  Normalization normalization;
+  std::string_view coef_formula;  ///< k as text, "1" for bare lobes
+  std::vector<ParamInfo> params;
+  /// Builds the model's implementation from parameter values in `params` order.
+  std::variant<LobeModel, FullBrdf> (*make)(std::span<const double> values);
+
+  const ParamInfo* find_param(std::string_view name) const noexcept;
+};
+
+/// Every model, in the order the CLI lists them.
+const std::vector<ModelInfo>& models();
+/// nullptr if unknown.
+const ModelInfo* find_model(std::string_view id) noexcept;
+
+using ParamValues = std::map<std::string, double, std::less<>>;
+
+class Model {
+ public:
+  const ModelInfo& info() const noexcept { return *info_; }
+  std::string_view id() const noexcept { return info_->id; }
+  /// Parameter values in info().params order.
+  std::span<const double> params() const noexcept { return values_; }
+  double param(std::string_view name) const;
+
+  bool is_lobe() const noexcept { return std::holds_alternative<LobeModel>(impl_); }
+  /// Preconditions for the next three: is_lobe().
+  const lobes::Lobe& lobe() const noexcept { return std::get<LobeModel>(impl_).lobe; }
+  Form form() const noexcept { return std::get<LobeModel>(impl_).form; }
+  /// The normalizing coefficient k of a lobe model.
+  double coef() const noexcept { return std::get<LobeModel>(impl_).k; }
+  /// k·F(c): the BRDF's value as a function of its form's cosine.
+  double at_cos(double c) const noexcept { return coef() * lobes::eval(lobe(), c); }
+
+  /// f(L, V) about the normal N (unit vectors, L toward the light, V toward the viewer).
+  double operator()(const Vec3& n, const Vec3& l, const Vec3& v) const noexcept {
+    return std::visit([&](const auto& m) { return eval(m, n, l, v); }, impl_);
+  }
+
+  friend Model make_model(std::string_view id, const ParamValues& params, std::optional<Form> form);
+
+ private:
+  static double eval(const LobeModel& m, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
+    return m.k * lobes::eval(m.lobe, form_cosine(m.form, n, l, v));
+  }
+  static double eval(const FullBrdf& b, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
+    return std::visit([&](const auto& brdf) { return brdf(n, l, v); }, b);
+  }
+
+  const ModelInfo* info_ = nullptr;
+  std::vector<double> values_;
+  std::variant<LobeModel, FullBrdf> impl_;
+};
+
+/// The model `id` with the given parameters (others at their defaults), in `form` if given
+/// (lobe models only; k stays the model's own). Throws InvalidArgument naming the problem for
+/// an unknown model or parameter, a value out of range or NaN, or a form on a full BRDF.
+Model make_model(std::string_view id, const ParamValues& params = {},
+                 std::optional<Form> form = std::nullopt);
+
+/// "rv" or "nh"; throws InvalidArgument otherwise.
+Form parse_form(std::string_view text);
+
+}  // namespace specula

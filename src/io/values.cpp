@@ -1,0 +1,118 @@
+#include "specula/io/values.h"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <string>
+
+#include "specula/error.h"
+
+namespace specula::io {
+namespace {
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i == text.size() || text[i] == separator) {
+      parts.push_back(text.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  return parts;
+}
+
+[[noreturn]] void malformed(std::string_view item, std::string_view why) {
+  throw InvalidArgument(fmt::format("malformed range '{}': {}", item, why));
+}
+
+void check_count(std::string_view item, double count) {
+  if (!(count <= static_cast<double>(kMaxValues)))
+    malformed(item, fmt::format("more than {} values", kMaxValues));
+}
+
+void append_stepped(std::string_view item, double a, double b, double step, std::vector<double>& out) {
+  if (!(step > 0)) malformed(item, "the step must be > 0");
+  if (b < a) malformed(item, "the end is below the start");
+  const double count = std::floor((b - a) / step * (1 + 1e-12)) + 1;
+  check_count(item, count);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) out.push_back(a + step * i);
+}
+
+void append_counted(std::string_view item, double a, double b, std::string_view count_text,
+                    std::vector<double>& out) {
+  const auto at = split(count_text, ':');
+  if (at.size() > 2 || (at.size() == 2 && at[1] != "log"))
+    malformed(item, "expected a:b@count or a:b@count:log");
+  const double count = parse_number(at[0], "the count");
+  if (count < 1 || count != std::floor(count)) malformed(item, "the count must be a whole number ≥ 1");
+  check_count(item, count);
+  const bool log = at.size() == 2;
+  if (log && !(a > 0 && b > 0)) malformed(item, "log spacing needs a > 0 and b > 0");
+  const auto n = static_cast<std::size_t>(count);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
+    if (i + 1 == n && n > 1) out.push_back(b);  // the end exactly, free of round-off
+    else out.push_back(log ? a * std::pow(b / a, f) : a + (b - a) * f);
+  }
+}
+
+void append_item(std::string_view item, std::vector<double>& out) {
+  if (item == "paper50") {
+    const auto p = paper50();
+    out.insert(out.end(), p.begin(), p.end());
+    return;
+  }
+  const auto at = item.find('@');
+  const auto parts = split(item.substr(0, at), ':');
+  if (parts.size() == 1 && at == std::string_view::npos) {
+    out.push_back(parse_number(item, "value"));
+    return;
+  }
+  if (parts.size() < 2 || parts.size() > 3) malformed(item, "expected a:b, a:b:step or a:b@count");
+  const double a = parse_number(parts[0], fmt::format("the start of '{}'", item));
+  const double b = parse_number(parts[1], fmt::format("the end of '{}'", item));
+  if (at != std::string_view::npos) {
+    if (parts.size() != 2) malformed(item, "a step and a count cannot both be given");
+    append_counted(item, a, b, item.substr(at + 1), out);
+  } else if (parts.size() == 3) {
+    append_stepped(item, a, b, parse_number(parts[2], fmt::format("the step of '{}'", item)), out);
+  } else {
+    if (a != std::floor(a) || b != std::floor(b)) malformed(item, "a:b takes integers (use a:b:step)");
+    append_stepped(item, a, b, 1, out);
+  }
+}
+
+}  // namespace
+
+double parse_number(std::string_view text, std::string_view what) {
+  double value = 0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (!text.empty() && *first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (text.empty() || ec != std::errc() || ptr != last)
+    throw InvalidArgument(fmt::format("{}: '{}' is not a number", what, text));
+  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("{}: '{}' is not finite", what, text));
+  return value;
+}
+
+std::vector<double> parse_values(std::string_view spec) {
+  if (spec.empty()) throw InvalidArgument("empty list of values");
+  std::vector<double> values;
+  for (const auto item : split(spec, ',')) {
+    if (item.empty()) malformed(spec, "empty item between commas");
+    append_item(item, values);
+    if (values.size() > kMaxValues) malformed(spec, fmt::format("more than {} values", kMaxValues));
+  }
+  return values;
+}
+
+std::vector<double> paper50() {
+  std::vector<double> n{1};
+  for (int i = 1; i < 50; ++i)
+    n.push_back(std::max(n.back() + 1, std::round(std::pow(1000.0, i / 49.0))));
+  return n;
+}
+
+}  // namespace specula::io

@@ -1,0 +1,19 @@
+#include "specula/normalize/normalize.h"
+
+#include <string>
+
+#include "specula/error.h"
+
+namespace specula::normalize {
+
+double coefficient(const lobes::Lobe& lobe, Form form, Method method) {
+  if (method == Method::quadrature) return quadrature(lobe, form);
+  if (const auto exact = closed_form(lobe, form)) return *exact;
+  if (method == Method::exact)
+    throw InvalidArgument(std::string("no closed-form normalization is known for the ") +
+                          lobes::family_name(lobe) + " lobe in " + to_string(form) +
+                          " form; use --method quadrature");
+  return quadrature(lobe, form);
+}
+
+}  // namespace specula::normalize
