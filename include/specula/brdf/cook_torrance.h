@@ -18,7 +18,7 @@ struct CookTorrance1982 {
     if (nl <= T(0) || nv <= T(0)) return T(0);
     const Vec3T<T> h = half_vector(l, v);
     const T nh = dot(n, h), vh = dot(v, h);
-    const T d = microfacet::beckmann_unnormalized(nh, T(m));
+    const T d = microfacet::beckmann_unnormalized(microfacet::inclination(n, h), T(m));
     const T f = microfacet::fresnel_dielectric(vh, T(f0));
     const T g = microfacet::g_vcavity(nh, nv, nl, vh);
     return d * f * g / (std::numbers::pi_v<T> * nl * nv);
@@ -37,7 +37,8 @@ struct CookTorrance {
     if (nl <= T(0) || nv <= T(0)) return T(0);
     const Vec3T<T> h = half_vector(l, v);
     const T nh = dot(n, h), vh = dot(v, h);
-    const T d = microfacet::beckmann_unnormalized(nh, T(m)) / std::numbers::pi_v<T>;
+    const T d = microfacet::beckmann_unnormalized(microfacet::inclination(n, h), T(m)) /
+                std::numbers::pi_v<T>;
     const T f = microfacet::fresnel_schlick(vh, T(f0));
     const T g = microfacet::g_vcavity(nh, nv, nl, vh);
     return d * f * g / (T(4) * nl * nv);

@@ -15,9 +15,10 @@ struct Ggx {
     const T nl = dot(n, l), nv = dot(n, v);
     if (nl <= T(0) || nv <= T(0)) return T(0);
     const Vec3T<T> h = half_vector(l, v);
-    const T nh = dot(n, h), vh = dot(v, h);
+    const T vh = dot(v, h);
     const T a2 = T(alpha) * T(alpha);
-    const T q = nh * nh * (a2 - T(1)) + T(1);
+    const auto incl = microfacet::inclination(n, h);
+    const T q = incl.cos2 * a2 + incl.sin2;  // cos²δ (α² − 1) + 1 without cancellation
     const T d = a2 / (std::numbers::pi_v<T> * q * q);
     const T g = T(1) / (T(1) + smith_lambda(nl, a2) + smith_lambda(nv, a2));
     return d * microfacet::fresnel_schlick(vh, T(f0)) * g / (T(4) * nl * nv);

@@ -6,18 +6,33 @@
 
 namespace specula::microfacet {
 
-/// tan²δ from cos δ, δ the angle between N and H.
+/// sin²δ and cos²δ of the angle δ between the unit normal N and a vector h of any length
+/// (scaled by |h|²); sin² from the cross product, exact near δ = 0 where 1 − cos²δ cancels.
 template <std::floating_point T>
-constexpr T tan2_from_cos(T cos_delta) noexcept {
-  const T c2 = cos_delta * cos_delta;
+struct Inclination {
+  T sin2, cos2;
+  T tan2() const noexcept { return sin2 / cos2; }
+};
+
+template <std::floating_point T>
+constexpr Inclination<T> inclination(const Vec3T<T>& n, const Vec3T<T>& h) noexcept {
+  const T c = dot(n, h);
+  const Vec3T<T> s = cross(n, h);
+  const T norm = dot(h, h);
+  return {dot(s, s) / norm, c * c / norm};
+}
+
+/// tan²θ of a unit direction ω from its cosine (grazing-safe enough for masking terms).
+template <std::floating_point T>
+constexpr T tan2_from_cos(T cos_theta) noexcept {
+  const T c2 = cos_theta * cos_theta;
   return (T(1) - c2) / c2;
 }
 
 /// Beckmann's exp(−tan²δ/m²) / (m² cos⁴δ), without the 1/π of the normalized NDF.
 template <std::floating_point T>
-T beckmann_unnormalized(T cos_delta, T m) noexcept {
-  const T c2 = cos_delta * cos_delta;
-  return std::exp(-tan2_from_cos(cos_delta) / (m * m)) / (m * m * c2 * c2);
+T beckmann_unnormalized(const Inclination<T>& h, T m) noexcept {
+  return std::exp(-h.tan2() / (m * m)) / (m * m * h.cos2 * h.cos2);
 }
 
 /// Cook & Torrance's V-cavity masking-shadowing G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)).

@@ -24,6 +24,11 @@ constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) noexcept {
 }
 
 template <std::floating_point T>
+constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) noexcept {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <std::floating_point T>
 T length(const Vec3T<T>& a) noexcept {
   return std::sqrt(dot(a, a));
 }

@@ -23,7 +23,7 @@ struct Ward {
     const Vec3T<T> h = l + v;  // unnormalized
     const T hn = dot(h, n);
     const T a2 = T(alpha) * T(alpha);
-    const T gauss = std::exp(-microfacet::tan2_from_cos(hn / length(h)) / a2);
+    const T gauss = std::exp(-microfacet::inclination(n, h).tan2() / a2);
     constexpr T pi = std::numbers::pi_v<T>;
     switch (variant) {
       case WardVariant::ward1992: return T(rho_s) * gauss / (4 * pi * a2 * std::sqrt(nl * nv));

@@ -1,7 +1,7 @@
 #pragma once
 // Numerical normalization of any lobe in either form (MATH.md §3: integrate in a variable
 // suited to narrow lobes). The integral runs over u = −ln c, split at u = w·4^j where w is
-// the lobe's half-maximum width, with adaptive Gauss-Kronrod on each piece:
+// the lobe's half-maximum width, with adaptive Gauss-Kronrod (31 points) on each piece:
 //   rv: ρ₁(0) = 2π ∫₀^∞ F(u) e^(−2u) du           (truncated at u = 40: e^(−80) is below 1e-34)
 //   nh: ρ₁(0) = 2π ∫₀^(ln2/2) F(u) (2e^(−2u) − 1) 4e^(−2u) du   (N·H = cos(θ_o/2))
 // ρ₁(0) is the albedo at normal incidence with k = 1; the coefficient is 1/ρ₁(0).
