@@ -3,9 +3,7 @@
 include(CMakePackageConfigHelpers)
 
 install(DIRECTORY include/specula DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS specula EXPORT speculaTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS specula EXPORT speculaTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS specula_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/specula)

@@ -4,10 +4,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "text_support.h"
 
 namespace specula::testing {
 
@@ -21,19 +22,13 @@ struct ReferenceRow {
 inline std::vector<ReferenceRow> read_reference(const std::string& name) {
   std::ifstream file(std::string(SPECULA_REFERENCE_DIR) + "/" + name);
   if (!file) throw std::runtime_error("cannot open reference table " + name);
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream stream(line);
-    for (std::string cell; std::getline(stream, cell, ',');) cells.push_back(cell);
-    return cells;
-  };
   std::string line;
   std::getline(file, line);
-  const auto header = split(line);
+  const auto header = cells_of(line);
   std::vector<ReferenceRow> rows;
   while (std::getline(file, line)) {
     if (line.empty()) continue;
-    const auto cells = split(line);
+    const auto cells = cells_of(line);
     ReferenceRow row;
     for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row.fields[header[i]] = cells[i];
     rows.push_back(std::move(row));

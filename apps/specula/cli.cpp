@@ -22,6 +22,7 @@ ParamValues ModelOptions::param_values() const {
     if (eq == std::string::npos || eq == 0)
       throw InvalidArgument(fmt::format("malformed --param '{}': expected NAME=VALUE", p));
     const std::string name = p.substr(0, eq);
+    if (values.contains(name)) throw InvalidArgument(fmt::format("--param {} is given twice", name));
     values[name] = io::parse_number(std::string_view(p).substr(eq + 1), "--param " + name);
   }
   return values;

@@ -40,13 +40,13 @@ io::Table eval_at_cosines(const Model& m, const EvalOptions& o) {
 }
 
 void check_polar(double degrees, const char* option) {
-  if (degrees < 0 || degrees > 90)
+  if (!(degrees >= 0 && degrees <= 90))  // NaN too
     throw InvalidArgument(fmt::format("{} {} is outside [0, 90] degrees", option, degrees));
 }
 
 io::Table eval_at_directions(const Model& m, const EvalOptions& o) {
   check_polar(*o.theta_i, "--theta-i");
-  if (o.phi_o < -360 || o.phi_o > 360)
+  if (!(o.phi_o >= -360 && o.phi_o <= 360))  // NaN too
     throw InvalidArgument(fmt::format("--phi-o {} is outside [-360, 360] degrees", o.phi_o));
   const Vec3 n{0, 0, 1};
   const Vec3 l = from_spherical(radians(*o.theta_i), 0.0);

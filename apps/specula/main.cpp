@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
                "Run `specula COMMAND --help` for a command's options and an example.",
                "specula"};
   app.require_subcommand(1);
+  app.footer("Example:\n  specula normalize --model log --n 1:7 --round 3   # the paper's Fig. 5 table");
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("specula: error: ") + e.what() + " (see --help)\n";
   });

@@ -36,7 +36,8 @@ void append_stepped(std::string_view item, double a, double b, double step, std:
   if (b < a) malformed(item, "the end is below the start");
   const double count = std::floor((b - a) / step * (1 + 1e-12)) + 1;
   check_count(item, count);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) out.push_back(a + step * i);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)  // ≤ b; b itself despite round-off
+    out.push_back(std::abs(b - (a + step * i)) <= 1e-9 * step ? b : std::min(b, a + step * i));
 }
 
 void append_counted(std::string_view item, double a, double b, std::string_view count_text,
@@ -44,7 +45,7 @@ void append_counted(std::string_view item, double a, double b, std::string_view 
   const auto at = split(count_text, ':');
   if (at.size() > 2 || (at.size() == 2 && at[1] != "log"))
     malformed(item, "expected a:b@count or a:b@count:log");
-  const double count = parse_number(at[0], "the count");
+  const double count = parse_number(at[0], fmt::format("the count of '{}'", item));
   if (count < 1 || count != std::floor(count)) malformed(item, "the count must be a whole number ≥ 1");
   check_count(item, count);
   const bool log = at.size() == 2;
@@ -89,7 +90,7 @@ double parse_number(std::string_view text, std::string_view what) {
   double value = 0;
   const char* first = text.data();
   const char* last = text.data() + text.size();
-  if (!text.empty() && *first == '+') ++first;
+  if (text.size() > 1 && text[0] == '+' && text[1] != '-') ++first;  // "+1", not "+-1"
   const auto [ptr, ec] = std::from_chars(first, last, value);
   if (text.empty() || ec != std::errc() || ptr != last)
     throw InvalidArgument(fmt::format("{}: '{}' is not a number", what, text));

@@ -16,10 +16,13 @@ double schlick_rv_integral_series(double m) noexcept {
   return sum;
 }
 
+// Boost's default promotes double to long double: 7× slower, and no more accurate here.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
 /// e^x E₁(x) for x > 0, without overflow: asymptotic series beyond x = 50, where its smallest
 /// term is below e^(−50).
 double scaled_e1(double x) noexcept {
-  if (x <= 50) return std::exp(x) * boost::math::expint(1, x);
+  if (x <= 50) return std::exp(x) * boost::math::expint(1, x, DoublePolicy());
   double term = 1 / x, sum = 0;
   for (int k = 1; std::abs(term) > 1e-18 * std::abs(sum) || k == 1; ++k) {
     sum += term;

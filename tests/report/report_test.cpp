@@ -7,16 +7,12 @@
 
 #include "specula/error.h"
 #include "specula/report/report.h"
+#include "text_support.h"
 
 namespace specula::report {
 namespace {
 
-std::string read(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
+using specula::testing::read_file;
 
 class ReportTest : public ::testing::Test {
  protected:
@@ -30,7 +26,7 @@ TEST_F(ReportTest, WritesFig5WithThePapersRowsMatched) {
   std::vector<std::string> sections;
   write_report({dir, true, [&](std::string_view s) { sections.emplace_back(s); }});
   EXPECT_FALSE(sections.empty());
-  const std::string html = read(dir / "index.html");
+  const std::string html = read_file(dir / "index.html");
   EXPECT_NE(html.find("Fig. 5"), std::string::npos);
   EXPECT_NE(html.find("<td>0.483</td><td>0.483</td>"), std::string::npos);
   EXPECT_NE(html.find("<td>1.634</td><td>1.634</td>"), std::string::npos);
@@ -39,7 +35,7 @@ TEST_F(ReportTest, WritesFig5WithThePapersRowsMatched) {
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_EQ(html.find("<script src"), std::string::npos);
 
-  const std::string csv = read(dir / "fig5-normalization.csv");
+  const std::string csv = read_file(dir / "fig5-normalization.csv");
   EXPECT_EQ(csv.rfind("n,coef_exact,coef_exact_3dp,coef_paper_fit,delta_paper_fit\n1,", 0), 0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 51);
   EXPECT_NE(csv.find("\n1000,197.498610080195"), std::string::npos);
