@@ -181,6 +181,16 @@ double Model::param(std::string_view name) const {
   throw InvalidArgument(fmt::format("model '{}' has no parameter '{}'", id(), name));
 }
 
+Model Model::with_coef(double k) const {
+  auto* lobe_model = std::get_if<LobeModel>(&impl_);
+  if (!lobe_model) throw InvalidArgument(fmt::format("model '{}' is a full BRDF and has no coefficient", id()));
+  if (!(k > 0) || !std::isfinite(k))
+    throw InvalidArgument(fmt::format("coefficient {} for model '{}' must be finite and > 0", k, id()));
+  Model copy = *this;
+  std::get<LobeModel>(copy.impl_).k = k;
+  return copy;
+}
+
 namespace {
 
 std::string param_names(const ModelInfo& info) {

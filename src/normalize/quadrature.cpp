@@ -1,15 +1,14 @@
 #include "specula/normalize/quadrature.h"
 
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <numbers>
+
+#include "../numeric/piecewise.h"
 
 namespace specula::normalize {
 namespace {
 
 constexpr double kRvTruncation = 40;  // e^(−2u) < 1.9e-35 beyond
-constexpr double kTolerance = 1e-13;  // on |K31 − G15|, far above the rule's true error
-constexpr unsigned kMaxDepth = 15;
 
 double weight(Form form, double u) noexcept {
   const double e2 = std::exp(-2 * u);
@@ -20,25 +19,9 @@ template <class L>
 Integral integrate(const L& lobe, Form form) {
   const double form_end = form == Form::rv ? kRvTruncation : std::numbers::ln2 / 2;
   const double end = std::min(form_end, lobe.support_log_cos());
-  // Integrate in s = u/width so that every piece is O(1) in length and in value, whatever n is:
-  // Boost's error control misbehaves on pieces of length 1e-9.
-  const double width = std::min(lobe.half_max_log_cos(), end);
-  const double s_end = end / width;
-  auto integrand = [&](double s) {
-    const double u = s * width;
-    return lobe.at_log_cos(u) * weight(form, u);
-  };
-
-  Integral total;
-  for (double a = 0, b = 1; a < s_end; a = b, b *= 4) {
-    b = std::min(b, s_end);
-    double error = 0;
-    total.value += boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
-        integrand, a, b, kMaxDepth, kTolerance, &error);
-    total.error_estimate += error;
-  }
-  const double scale = 2 * std::numbers::pi * width;
-  return {total.value * scale, total.error_estimate * scale};
+  const auto estimate = numeric::integrate_pieces(
+      [&](double u) { return lobe.at_log_cos(u) * weight(form, u); }, 0, end, lobe.half_max_log_cos());
+  return {2 * std::numbers::pi * estimate.value, 2 * std::numbers::pi * estimate.error};
 }
 
 }  // namespace

@@ -90,6 +90,11 @@ class Model {
   Form form() const noexcept { return std::get<LobeModel>(impl_).form; }
   /// The normalizing coefficient k of a lobe model.
   double coef() const noexcept { return std::get<LobeModel>(impl_).k; }
+  /// Precondition: !is_lobe().
+  const FullBrdf& brdf() const noexcept { return std::get<FullBrdf>(impl_); }
+  /// The same lobe model with coefficient k (e.g. k = 1 for the bare lobe, or a strict k).
+  /// Throws InvalidArgument for a full BRDF or a k that is not finite and > 0.
+  Model with_coef(double k) const;
   /// k·F(c): the BRDF's value as a function of its form's cosine.
   double at_cos(double c) const noexcept { return coef() * lobes::eval(lobe(), c); }
 
