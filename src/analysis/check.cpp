@@ -1,0 +1,97 @@
+#include "specula/analysis/check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <tbb/parallel_for.h>
+
+#include "specula/analysis/albedo.h"
+#include "specula/error.h"
+
+namespace specula::analysis {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+/// Maximizes f on [a, b] by golden-section search (robust at kinks, where maxima of clipped
+/// lobes sit); returns the abscissa.
+template <class F>
+double golden_section_max(const F& f, double a, double b, double tolerance) {
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  double c = b - r * (b - a), d = a + r * (b - a);
+  double fc = f(c), fd = f(d);
+  while (b - a > tolerance) {
+    if (fc >= fd) {
+      b = d, d = c, fd = fc;
+      c = b - r * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + r * (b - a), fd = f(d);
+    }
+  }
+  return fc >= fd ? c : d;
+}
+
+/// Uniform on the upper hemisphere, including grazing directions.
+Vec3 random_direction(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double z = uniform(rng), phi = 2 * std::numbers::pi * uniform(rng);
+  const double s = std::sqrt(1 - z * z);
+  return {s * std::cos(phi), s * std::sin(phi), z};
+}
+
+}  // namespace
+
+MaxAlbedo max_albedo(const Model& model, double step_deg) {
+  if (!(step_deg > 0 && step_deg <= 45)) throw InvalidArgument("the θ_i grid step must be in (0, 45] degrees");
+  std::vector<double> degrees;
+  for (double d = 0; d < 89.5; d += step_deg) degrees.push_back(d);
+  degrees.insert(degrees.end(), {89.5, 89.9});
+  std::vector<double> radians(degrees.size());
+  for (std::size_t i = 0; i < degrees.size(); ++i) radians[i] = degrees[i] * kDegree;
+  const std::vector<double> rho = albedo_curve(model, radians);
+
+  const auto best = static_cast<std::size_t>(std::max_element(rho.begin(), rho.end()) - rho.begin());
+  const double lo = degrees[best == 0 ? 0 : best - 1];
+  const double hi = degrees[std::min(best + 1, degrees.size() - 1)];
+  auto rho_at = [&](double deg) { return albedo(model, deg * kDegree).value; };
+  MaxAlbedo result{rho[best], degrees[best]};
+  if (hi > lo) {
+    const double deg = golden_section_max(rho_at, lo, hi, 1e-6);
+    const double value = rho_at(deg);
+    if (value > result.value) result = {value, deg};
+  }
+  return result;
+}
+
+CheckResult check(const Model& model, const CheckOptions& options) {
+  CheckResult r;
+  r.albedo_normal = albedo(model, 0).value;
+  r.max_albedo = max_albedo(model, options.grid_step_deg);
+  r.max_albedo.value = std::max(r.max_albedo.value, r.albedo_normal);
+  if (r.max_albedo.value == r.albedo_normal) r.max_albedo.theta_deg = 0;
+
+  const Vec3 n{0, 0, 1};
+  std::mt19937_64 rng(options.seed);
+  r.min_value = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < options.reciprocity_pairs; ++i) {
+    const Vec3 l = random_direction(rng), v = random_direction(rng);
+    const double f_lv = model(n, l, v), f_vl = model(n, v, l);
+    r.min_value = std::min({r.min_value, f_lv, f_vl});
+    const double scale = std::max(std::abs(f_lv), std::abs(f_vl));
+    if (scale > 0) r.max_asymmetry = std::max(r.max_asymmetry, std::abs(f_lv - f_vl) / scale);
+  }
+  r.pairs = options.reciprocity_pairs;
+  r.conserves_energy = r.max_albedo.value <= 1 + options.energy_tolerance;
+  r.reciprocal = r.max_asymmetry <= options.reciprocity_tolerance;
+  r.non_negative = r.min_value >= 0;
+  return r;
+}
+
+double strict_coefficient(const Model& lobe_model, double step_deg) {
+  return 1 / max_albedo(lobe_model.with_coef(1), step_deg).value;
+}
+
+}  // namespace specula::analysis

@@ -1,0 +1,111 @@
+#include "specula/analysis/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <vector>
+
+#include "specula/error.h"
+
+namespace specula::analysis {
+namespace {
+
+constexpr double kLogCosEnd = 40;  // c = e^(−40): every lobe is below 1e-17 there
+constexpr int kSamplesPerWidth = 64;
+constexpr int kNearWidths = 64;
+constexpr int kFarSamples = 2048;
+
+struct Maximum {
+  double value = 0;
+  double at = 0;
+};
+
+/// Maximizes g over [a, b] sampled at `grid` (sorted, within [a, b]): the best sample, then
+/// golden-section search in the bracket of its neighbours.
+template <class G>
+Maximum maximize(const G& g, const std::vector<double>& grid) {
+  Maximum best;
+  std::size_t best_index = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const double value = g(grid[i]);
+    if (value > best.value) best = {value, grid[i]}, best_index = i;
+  }
+  if (grid.size() < 3) return best;
+  double lo = grid[best_index == 0 ? 0 : best_index - 1];
+  double hi = grid[std::min(best_index + 1, grid.size() - 1)];
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  double c = hi - r * (hi - lo), d = lo + r * (hi - lo), gc = g(c), gd = g(d);
+  while (hi - lo > 1e-15 * (1 + hi)) {
+    if (gc >= gd) {
+      hi = d, d = c, gd = gc, c = hi - r * (hi - lo), gc = g(c);
+    } else {
+      lo = c, c = d, gc = gd, d = lo + r * (hi - lo), gd = g(d);
+    }
+  }
+  for (const auto& [value, at] : {Maximum{gc, c}, Maximum{gd, d}})
+    if (value > best.value) best = {value, at};
+  return best;
+}
+
+/// Samples of [a, b]: dense (kSamplesPerWidth per width) up to kNearWidths widths, log-spaced
+/// beyond, plus the given extra points (kinks).
+std::vector<double> sample_grid(double a, double b, double width, std::initializer_list<double> extra) {
+  std::vector<double> grid;
+  const double step = width / kSamplesPerWidth;
+  const double near_end = std::min(b, a + kNearWidths * width);
+  for (double u = a; u < near_end; u += step) grid.push_back(u);
+  if (b > near_end) {
+    const double ratio = std::pow(b / near_end, 1.0 / kFarSamples);
+    for (double u = near_end; u < b; u *= ratio) grid.push_back(u);
+  }
+  grid.push_back(b);
+  for (const double x : extra)
+    if (x > a && x < b) grid.push_back(x);
+  std::sort(grid.begin(), grid.end());
+  return grid;
+}
+
+double angle_deg(double u) { return 2 * std::asin(std::sqrt(-std::expm1(-u) / 2)) * 180 / std::numbers::pi; }
+
+/// The u where the (decreasing) reference falls to `zone`, by bisection.
+template <class L>
+double zone_end(const L& reference, double zone, double end) {
+  double lo = 0, hi = end;
+  if (reference.at_log_cos(hi) >= zone) return hi;
+  for (int i = 0; i < 200 && hi - lo > 1e-16 * hi; ++i) {
+    const double mid = (lo + hi) / 2;
+    (reference.at_log_cos(mid) >= zone ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+template <class A, class B>
+ApproximationError error_of(const A& model, const B& reference, double zone) {
+  const double width = reference.half_max_log_cos();
+  const double end = std::min(kLogCosEnd, reference.support_log_cos());
+  const double model_end = model.support_log_cos();
+  const double edge = zone_end(reference, zone, end);
+
+  auto abs_diff = [&](double u) { return std::abs(model.at_log_cos(u) - reference.at_log_cos(u)); };
+  auto rel_diff = [&](double u) {
+    const double r = reference.at_log_cos(u);
+    return r > 0 ? std::abs(model.at_log_cos(u) - r) / r : 0.0;
+  };
+  ApproximationError e;
+  const Maximum abs_max = maximize(abs_diff, sample_grid(0, kLogCosEnd, width, {model_end, end}));
+  e.max_abs = abs_max.value;
+  e.argmax_abs_deg = angle_deg(abs_max.at);
+  e.max_rel_epicenter = maximize(rel_diff, sample_grid(0, edge, width, {model_end})).value;
+  if (edge < end) e.max_rel_attenuation = maximize(rel_diff, sample_grid(edge, end, width, {model_end})).value;
+  return e;
+}
+
+}  // namespace
+
+ApproximationError approximation_error(const lobes::Lobe& model, const lobes::Lobe& reference, double zone) {
+  if (!(zone > 0 && zone < 1)) throw InvalidArgument(fmt::format("zone {} must be in (0, 1)", zone));
+  return std::visit([zone](const auto& a, const auto& b) { return error_of(a, b, zone); }, model, reference);
+}
+
+}  // namespace specula::analysis

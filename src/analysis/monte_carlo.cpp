@@ -1,0 +1,86 @@
+#include "specula/analysis/monte_carlo.h"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "specula/analysis/albedo.h"
+
+namespace specula::analysis {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kLobeShare = 0.8;
+
+/// An orthonormal frame around the unit vector w.
+struct Frame {
+  Vec3 t, b, w;
+  explicit Frame(const Vec3& axis) : w(axis) {
+    const Vec3 a = std::abs(w.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    t = normalized(cross(a, w));
+    b = cross(w, t);
+  }
+  Vec3 to_world(double cos_theta, double phi) const {
+    const double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
+    return t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + w * cos_theta;
+  }
+};
+
+/// pdf (m + 1)/(2π) cos^m θ about an axis; m from the lobe's width: cos^m = ½ at the width.
+struct PowerLobe {
+  double m;
+  double pdf(double cos_theta) const { return cos_theta > 0 ? (m + 1) / (2 * kPi) * std::pow(cos_theta, m) : 0; }
+  double sample_cos(double xi) const { return std::pow(xi, 1 / (m + 1)); }
+};
+
+PowerLobe matched_power_lobe(const Model& model) {
+  const double width = std::min(angular_width(model), 1.4);
+  return {std::max(1.0, std::log(0.5) / std::log(std::cos(width)))};
+}
+
+}  // namespace
+
+MonteCarloEstimate albedo_monte_carlo(const Model& model, double theta_i, std::size_t samples,
+                                      std::uint64_t seed) {
+  const Vec3 n{0, 0, 1};
+  const Vec3 l = from_spherical(theta_i, 0.0);
+  const bool around_r = model.is_lobe() && model.form() == Form::rv;
+  const Frame lobe_frame(around_r ? reflect(l, n) : n);
+  const Frame normal_frame(n);
+  const PowerLobe lobe = matched_power_lobe(model);
+
+  // pdf of V under the lobe strategy.
+  auto lobe_pdf = [&](const Vec3& v) {
+    if (around_r) return lobe.pdf(dot(lobe_frame.w, v));
+    const Vec3 h = half_vector(l, v);
+    const double vh = dot(v, h);
+    return vh > 0 ? lobe.pdf(h.z) / (4 * vh) : 0.0;
+  };
+
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  double sum = 0, sum_sq = 0;
+  for (std::size_t i = 0; i < samples; ++i) {
+    const double choice = uniform(rng), xi1 = uniform(rng), xi2 = uniform(rng);
+    Vec3 v;
+    if (choice < kLobeShare) {
+      const Vec3 axis_dir = lobe_frame.to_world(lobe.sample_cos(xi1), 2 * kPi * xi2);
+      v = around_r ? axis_dir : reflect(l, axis_dir);
+    } else {
+      v = normal_frame.to_world(std::sqrt(xi1), 2 * kPi * xi2);  // cosine-weighted
+    }
+    double value = 0;
+    if (v.z > 0) {
+      const double pdf = kLobeShare * lobe_pdf(v) + (1 - kLobeShare) * v.z / kPi;
+      value = pdf > 0 ? model(n, l, v) * v.z / pdf : 0;
+    }
+    sum += value;
+    sum_sq += value * value;
+  }
+  const double count = static_cast<double>(samples);
+  const double mean = sum / count;
+  const double variance = std::max(0.0, sum_sq / count - mean * mean);
+  return {mean, std::sqrt(variance / count), samples};
+}
+
+}  // namespace specula::analysis
