@@ -15,6 +15,10 @@ void ModelOptions::add_to(CLI::App& command, bool with_form) {
     command.add_option("--form", form, "rv (c = R·V) or nh (c = N·H); default: the model's own");
 }
 
+void ModelOptions::add_coef_to(CLI::App& command) {
+  command.add_option("--coef", coef, "Use this coefficient k instead of the model's own (lobe models)");
+}
+
 ParamValues ModelOptions::param_values() const {
   ParamValues values;
   for (const auto& p : params) {
@@ -33,7 +37,21 @@ std::optional<Form> ModelOptions::form_override() const {
   return parse_form(form);
 }
 
-Model ModelOptions::make() const { return make_model(id, param_values(), form_override()); }
+Model ModelOptions::make() const {
+  Model m = make_model(id, param_values(), form_override());
+  return coef ? m.with_coef(*coef) : m;
+}
+
+std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
+  std::vector<std::pair<std::string, std::string>> meta{{"model", std::string(m.id())}};
+  for (std::size_t i = 0; i < m.params().size(); ++i)
+    meta.emplace_back(std::string(m.info().params[i].name), io::format_number(m.params()[i]));
+  if (m.is_lobe()) {
+    meta.emplace_back("form", to_string(m.form()));
+    meta.emplace_back("coef", io::format_number(m.coef()));
+  }
+  return meta;
+}
 
 void OutputOptions::add_to(CLI::App& command) {
   command.add_option("--format", format, "csv (default) or json")

@@ -16,8 +16,11 @@ struct ModelOptions {
   std::string id;
   std::vector<std::string> params;
   std::string form;
+  std::optional<double> coef;
 
   void add_to(CLI::App& command, bool with_form = true);
+  /// Adds --coef K: override a lobe model's k (e.g. with a coefficient from `normalize`).
+  void add_coef_to(CLI::App& command);
   ParamValues param_values() const;
   std::optional<Form> form_override() const;
   Model make() const;
@@ -34,6 +37,9 @@ struct OutputOptions {
   void emit(const io::Table& table) const;
 };
 
+/// Thrown after a check's report is printed when a property fails: exit code 1.
+struct CheckFailed {};
+
 /// Text to stdout, or atomically to `out` if non-empty.
 void write_output(const std::string& out, const std::string& text);
 
@@ -41,5 +47,11 @@ void add_models_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_normalize_command(CLI::App& app);
 void add_report_command(CLI::App& app);
+void add_albedo_command(CLI::App& app);
+void add_check_command(CLI::App& app);
+void add_error_command(CLI::App& app);
+
+/// Metadata of a model for JSON output: id, parameter values, form.
+std::vector<std::pair<std::string, std::string>> model_meta(const Model& m);
 
 }  // namespace specula::cli

@@ -19,14 +19,6 @@ struct EvalOptions {
   double phi_o = 0;
 };
 
-std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
-  std::vector<std::pair<std::string, std::string>> meta{{"model", std::string(m.id())}};
-  for (std::size_t i = 0; i < m.params().size(); ++i)
-    meta.emplace_back(std::string(m.info().params[i].name), io::format_number(m.params()[i]));
-  if (m.is_lobe()) meta.emplace_back("form", to_string(m.form()));
-  return meta;
-}
-
 io::Table eval_at_cosines(const Model& m, const EvalOptions& o) {
   if (!m.is_lobe())
     throw InvalidArgument(fmt::format(
@@ -66,6 +58,7 @@ void add_eval_command(CLI::App& app) {
   auto o = std::make_shared<EvalOptions>();
   auto* cmd = app.add_subcommand("eval", "Evaluate a model at cosines or at directions");
   o->model.add_to(*cmd);
+  o->model.add_coef_to(*cmd);
   auto* cos = cmd->add_option("--cos,-c", o->cos,
                               "Cosines: list or range (1,0.5  0:1@11  0.9:1@5:log); lobe models only");
   cmd->add_flag("--lobe", o->bare_lobe, "With --cos: print the bare lobe F(c) instead of k·F(c)");

@@ -17,11 +17,16 @@ int main(int argc, char** argv) {
   specula::cli::add_models_command(app);
   specula::cli::add_eval_command(app);
   specula::cli::add_normalize_command(app);
+  specula::cli::add_albedo_command(app);
+  specula::cli::add_check_command(app);
+  specula::cli::add_error_command(app);
   specula::cli::add_report_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);
+  } catch (const specula::cli::CheckFailed&) {
+    return 1;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;

@@ -14,6 +14,7 @@ namespace specula::analysis {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kRefineTolerance = 1e-4;  // degrees
 
 /// Maximizes f on [a, b] by golden-section search (robust at kinks, where maxima of clipped
 /// lobes sit); returns the abscissa.
@@ -44,22 +45,29 @@ Vec3 random_direction(std::mt19937_64& rng) {
 
 }  // namespace
 
-MaxAlbedo max_albedo(const Model& model, double step_deg) {
-  if (!(step_deg > 0 && step_deg <= 45)) throw InvalidArgument("the θ_i grid step must be in (0, 45] degrees");
+MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<double>& grazing_deg) {
+  if (!(step_deg >= 0.01 && step_deg <= 45))
+    throw InvalidArgument("the θ_i grid step must be in [0.01, 45] degrees");
   std::vector<double> degrees;
   for (double d = 0; d < 89.5; d += step_deg) degrees.push_back(d);
-  degrees.insert(degrees.end(), {89.5, 89.9});
+  for (const double d : grazing_deg) {
+    require_incidence_deg(d, "grazing angle");
+    if (d > degrees.back()) degrees.push_back(d);
+  }
   std::vector<double> radians(degrees.size());
   for (std::size_t i = 0; i < degrees.size(); ++i) radians[i] = degrees[i] * kDegree;
   const std::vector<double> rho = albedo_curve(model, radians);
 
   const auto best = static_cast<std::size_t>(std::max_element(rho.begin(), rho.end()) - rho.begin());
-  const double lo = degrees[best == 0 ? 0 : best - 1];
-  const double hi = degrees[std::min(best + 1, degrees.size() - 1)];
-  auto rho_at = [&](double deg) { return albedo(model, deg * kDegree).value; };
   MaxAlbedo result{rho[best], degrees[best]};
-  if (hi > lo) {
-    const double deg = golden_section_max(rho_at, lo, hi, 1e-6);
+  // An interior maximum is refined; one at the grid's last point (89.9°) is the supremum's
+  // approach to grazing, reported there. ρ is even in θ_i, so at 0° it is stationary: a maximum
+  // there unless ρ rises within the first step.
+  auto rho_at = [&](double deg) { return albedo(model, deg * kDegree).value; };
+  const bool stationary_at_normal = best == 0 && rho_at(step_deg / 16) <= rho[0];
+  if (best + 1 < degrees.size() && !stationary_at_normal) {
+    const double lo = degrees[best == 0 ? 0 : best - 1], hi = degrees[best + 1];
+    const double deg = golden_section_max(rho_at, lo, hi, kRefineTolerance);
     const double value = rho_at(deg);
     if (value > result.value) result = {value, deg};
   }
@@ -69,7 +77,7 @@ MaxAlbedo max_albedo(const Model& model, double step_deg) {
 CheckResult check(const Model& model, const CheckOptions& options) {
   CheckResult r;
   r.albedo_normal = albedo(model, 0).value;
-  r.max_albedo = max_albedo(model, options.grid_step_deg);
+  r.max_albedo = max_albedo(model, options.grid_step_deg, options.grazing_deg);
   r.max_albedo.value = std::max(r.max_albedo.value, r.albedo_normal);
   if (r.max_albedo.value == r.albedo_normal) r.max_albedo.theta_deg = 0;
 

@@ -13,14 +13,17 @@ struct MaxAlbedo {
   double theta_deg = 0;
 };
 
-/// max over θ_i ∈ [0°, 90°) of ρ(θ_i): ρ on a grid of `step_deg` (plus 89.5° and 89.9°, where
-/// grazing behaviour shows), then golden-section refinement around the largest sample.
-MaxAlbedo max_albedo(const Model& model, double step_deg = 1);
+/// max over θ_i ∈ [0°, 90°) of ρ(θ_i): ρ on a grid of `step_deg` plus 89.5° and 89.9° (where
+/// grazing behaviour shows), then golden-section refinement (to 1e-4°) around the largest sample,
+/// unless it is 89.9° (the albedo still rising towards grazing) or a stationary maximum at 0°.
+MaxAlbedo max_albedo(const Model& model, double step_deg = 1,
+                     const std::vector<double>& grazing_deg = {89.5, 89.9});
 
 struct CheckOptions {
   std::size_t reciprocity_pairs = 10'000;
   std::uint64_t seed = 1;
   double grid_step_deg = 1;
+  std::vector<double> grazing_deg{89.5, 89.9};
   /// ρ ≤ 1 + tolerance counts as conserving (the cubature holds 8+ digits).
   double energy_tolerance = 1e-7;
   /// max |f(l,v) − f(v,l)| / max(f(l,v), f(v,l)) allowed.
