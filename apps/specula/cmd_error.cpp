@@ -19,7 +19,7 @@ struct ErrorOptions {
 };
 
 lobes::Lobe lobe_of(std::string_view id, ParamValues params, double n) {
-  params["n"] = n;
+  if (make_model(id).is_lobe()) params["n"] = n;  // else the full-BRDF message below, not "no parameter n"
   const Model m = make_model(id, params);
   if (!m.is_lobe()) throw InvalidArgument(fmt::format("error compares lobes; '{}' is a full BRDF", id));
   return m.lobe();

@@ -60,9 +60,8 @@ std::vector<double> sample_grid(double a, double b, double width, std::initializ
     for (double u = near_end; u < b; u *= ratio) grid.push_back(u);
   }
   grid.push_back(b);
-  for (const double x : extra)
-    if (x > a && x < b) grid.push_back(x);
-  std::sort(grid.begin(), grid.end());
+  for (const double x : extra)  // the grid is sorted: put the kinks in their places
+    if (x > a && x < b) grid.insert(std::lower_bound(grid.begin(), grid.end(), x), x);
   return grid;
 }
 
