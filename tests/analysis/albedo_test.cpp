@@ -63,8 +63,8 @@ TEST(Albedo, ProjectedBeckmannNdfIntegratesToOne) {
 }
 
 TEST(Albedo, ModernCookTorranceWithUnitFresnelNeverExceedsOne) {
-  for (const double m : {0.1, 0.3, 0.6})
-    for (const double deg : {0.0, 30.0, 60.0, 80.0, 89.0})
+  for (const double m : {0.1, 0.6})
+    for (const double deg : {0.0, 60.0, 89.0})
       EXPECT_LE(rho(make_model("cook-torrance", {{"m", m}, {"f0", 1}}), deg), 1.0) << m << " " << deg;
 }
 
@@ -116,8 +116,8 @@ TEST(Albedo, MonteCarloIsReproducible) {
 }
 
 TEST(Albedo, CurveIsIdenticalWhateverTheThreadCount) {
-  const Model m = make_model("ward", {{"alpha", 0.3}});
-  std::vector<double> angles = io::parse_values("0:1.5@16");
+  const Model m = make_model("ggx", {{"alpha", 0.3}});
+  std::vector<double> angles = io::parse_values("0:1.5@8");
   const auto parallel = albedo_curve(m, angles);
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const auto serial = albedo_curve(m, angles);
