@@ -73,6 +73,23 @@ Csv parse_csv(const std::string& text) {
   return csv;
 }
 
+double deg_of(double radians) { return radians * 180 / kPi; }
+
+/// The one value of a CSV column, by name (the table must have exactly one row).
+double only(const Csv& csv, const std::string& column) {
+  const auto it = std::find(csv.columns.begin(), csv.columns.end(), column);
+  EXPECT_NE(it, csv.columns.end()) << "no column " << column;
+  EXPECT_EQ(csv.rows.size(), 1u);
+  if (it == csv.columns.end() || csv.rows.size() != 1) return std::nan("");
+  return csv.rows[0][static_cast<std::size_t>(it - csv.columns.begin())];
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++count;
+  return count;
+}
+
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
@@ -243,6 +260,43 @@ TEST_F(Cli, NormalizeJsonHasTheSameNumbersAsCsv) {
   }
 }
 
+TEST_F(Cli, NormalizeStrictEqualsTheExactCoefficientWhereTheAlbedoPeaksAtNormalIncidence) {
+  // The log lobe's albedo is largest at θ_i = 0, so max ρ = 1 is ρ(0) = 1: the paper's k.
+  const Csv csv =
+      parse_csv(ok({"normalize", "--model", "log", "--n", "1,20,1000", "--condition", "strict", "--step", "10"}).out);
+  EXPECT_THAT(csv.columns, ElementsAre("n", "coef"));
+  const Csv exact = parse_csv(ok({"normalize", "--model", "log", "--n", "20", "--method", "exact"}).out);
+  ASSERT_EQ(csv.rows.size(), 3u);
+  ASSERT_EQ(exact.rows.size(), 1u);
+  EXPECT_EQ(csv.rows[1][0], 20.0);
+  EXPECT_NEAR(csv.rows[0][1], kCoef1, 1e-9 * kCoef1);
+  EXPECT_NEAR(csv.rows[1][1], exact.rows[0][1], 1e-9 * exact.rows[0][1]);
+  EXPECT_NEAR(csv.rows[2][1], kCoef1000, 1e-9 * kCoef1000);
+}
+
+TEST_F(Cli, NormalizeStrictMakesTheMaximumAlbedoOne) {
+  const double strict = only(
+      parse_csv(ok({"normalize", "--model", "gauss", "--n", "10", "--condition", "strict", "--step", "10"}).out),
+      "coef");
+  const double normal = only(parse_csv(ok({"normalize", "--model", "gauss", "--n", "10"}).out), "coef");
+  ASSERT_TRUE(std::isfinite(strict) && strict > 0);
+  // max ρ ≥ ρ(0), so the strict k is never above the paper's (here the two agree: ρ peaks at 0).
+  EXPECT_LE(strict, normal * (1 + 1e-9));
+  const Csv albedo = parse_csv(
+      ok({"albedo", "--model", "gauss", "-p", "n=10", "--coef", fmt::format("{}", strict), "--theta", "0:80:10"}).out);
+  ASSERT_EQ(albedo.rows.size(), 9u);
+  double max = 0;
+  for (const auto& row : albedo.rows) max = std::max(max, row[1]);
+  EXPECT_LE(max, 1 + 1e-7);
+  EXPECT_GE(max, 1 - 1e-7);
+}
+
+TEST_F(Cli, NormalizeBadCondition) {
+  EXPECT_THAT(bad({"normalize", "--model", "gauss", "--n", "10", "--condition", "strict", "--method", "exact"}).err,
+              HasSubstr("strict"));
+  EXPECT_THAT(bad({"normalize", "--model", "gauss", "--n", "10", "--condition", "nope"}).err, HasSubstr("nope"));
+}
+
 // ---- eval -----------------------------------------------------------------------------------
 
 TEST_F(Cli, EvalBarePhongAtCosines) {
@@ -295,6 +349,228 @@ TEST_F(Cli, EvalGgxAtDirections) {
   ASSERT_EQ(csv.rows.size(), 1u);
   EXPECT_TRUE(std::isfinite(csv.rows[0][1]));
   EXPECT_GT(csv.rows[0][1], 0);
+}
+
+// ---- albedo ---------------------------------------------------------------------------------
+
+TEST_F(Cli, AlbedoOfLambertIsOne) {
+  const Csv csv = parse_csv(ok({"albedo", "--model", "lambert", "--theta", "0,45,80"}).out);
+  EXPECT_THAT(csv.columns, ElementsAre("theta_deg", "albedo"));
+  ASSERT_EQ(csv.rows.size(), 3u);
+  EXPECT_EQ(csv.rows[0][0], 0.0);
+  EXPECT_EQ(csv.rows[1][0], 45.0);
+  EXPECT_EQ(csv.rows[2][0], 80.0);
+  for (const auto& row : csv.rows) EXPECT_NEAR(row[1], 1.0, 1e-8) << "theta " << row[0];
+}
+
+TEST_F(Cli, AlbedoOfANormalizedLobeAboveTheHorizonIsCosTheta) {
+  // At θ_i = 30° the n = 20 log lobe (support ≈ 26°) stays above the horizon: ρ = k·2π·Int·cos θ_i.
+  const double cubature =
+      only(parse_csv(ok({"albedo", "--model", "log-normalized", "-p", "n=20", "--theta", "30"}).out), "albedo");
+  EXPECT_NEAR(cubature, std::cos(30 * kPi / 180), 1e-9);
+
+  const Csv mc = parse_csv(ok({"albedo", "--model", "log-normalized", "-p", "n=20", "--theta", "30", "--method",
+                               "monte-carlo", "--samples", "20000", "--seed", "3"})
+                               .out);
+  EXPECT_THAT(mc.columns, ElementsAre("theta_deg", "albedo", "standard_error"));
+  const double se = only(mc, "standard_error");
+  EXPECT_GT(se, 0);
+  EXPECT_LT(se, 0.05);
+  EXPECT_NEAR(only(mc, "albedo"), cubature, 5 * se);
+}
+
+TEST_F(Cli, AlbedoJsonAndCoefOverride) {
+  const Result r = ok({"albedo", "--model", "log-normalized", "-p", "n=20", "--theta", "30", "--format", "json"});
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r;
+  EXPECT_EQ(j["model"], "log-normalized");
+  EXPECT_EQ(j["method"], "cubature");
+  EXPECT_EQ(j["columns"].get<std::vector<std::string>>(), (std::vector<std::string>{"theta_deg", "albedo"}));
+  ASSERT_TRUE(j["rows"].is_array());
+  ASSERT_EQ(j["rows"].size(), 1u);
+  EXPECT_EQ(j["rows"][0]["theta_deg"].get<double>(), 30.0);
+  const double albedo = j["rows"][0]["albedo"].get<double>();
+  EXPECT_NEAR(albedo, std::cos(30 * kPi / 180), 1e-9);
+
+  // --coef replaces k: twice the model's own k reflects twice as much.
+  ASSERT_TRUE(j.contains("coef")) << r;
+  const double k = number(j["coef"].is_string() ? j["coef"].get<std::string>() : j["coef"].dump());
+  ASSERT_GT(k, 0);
+  const Csv doubled = parse_csv(ok({"albedo", "--model", "log-normalized", "-p", "n=20", "--theta", "30", "--coef",
+                                    fmt::format("{}", 2 * k)})
+                                    .out);
+  EXPECT_NEAR(only(doubled, "albedo"), 2 * albedo, 1e-12);
+}
+
+TEST_F(Cli, AlbedoBadInput) {
+  EXPECT_THAT(bad({"albedo", "--model", "lambert", "--theta", "90"}).err, HasSubstr("90"));
+  EXPECT_THAT(bad({"albedo", "--model", "lambert", "--theta", "-1"}).err, HasSubstr("-1"));
+  EXPECT_THAT(bad({"albedo", "--model", "lambert", "--theta", "nan"}).err, HasSubstr("nan"));
+  EXPECT_THAT(bad({"albedo", "--model", "log-normalized", "--theta", "0", "--coef", "0"}).err, HasSubstr("coef"));
+  bad({"albedo", "--model", "log-normalized", "--theta", "0", "--coef", "-1"});
+  EXPECT_THAT(bad({"albedo", "--model", "ggx", "--coef", "2", "--theta", "0"}).err, HasSubstr("ggx"));
+  EXPECT_THAT(bad({"albedo", "--model", "lambert", "--theta", "0", "--method", "nope"}).err, HasSubstr("nope"));
+  EXPECT_THAT(
+      bad({"albedo", "--model", "lambert", "--theta", "0", "--method", "monte-carlo", "--samples", "0"}).err,
+      HasSubstr("--samples"));
+}
+
+// ---- check ----------------------------------------------------------------------------------
+
+TEST_F(Cli, CheckNormalizedLogHolds) {
+  const Result r = ok({"check", "--model", "log-normalized", "--n", "1,20", "--step", "30", "--pairs", "500"});
+  EXPECT_THAT(r.out, HasSubstr("log-normalized (n=1)"));
+  EXPECT_THAT(r.out, HasSubstr("log-normalized (n=20)"));
+  EXPECT_EQ(occurrences(r.out, "energy conservation"), 2u) << r;
+  EXPECT_EQ(occurrences(r.out, "holds"), 6u) << r;  // 3 properties × 2 values of n
+  EXPECT_EQ(occurrences(r.out, "FAILS"), 0u) << r;
+  for (const auto& line : lines_of(r.out))
+    for (const char* property : {"energy conservation", "reciprocity", "non-negativity"})
+      if (line.find(property) != std::string::npos) {
+        EXPECT_THAT(line, HasSubstr("holds")) << line;
+      }
+}
+
+TEST_F(Cli, CheckBarePhongFailsWithExitOne) {
+  // k = 1, n = 1: ρ(0) = 2π ∫ cos² θ sin θ dθ = 2π/3 > 1.
+  const Result r = run({"check", "--model", "phong", "-p", "n=1", "--step", "30", "--pairs", "500"});
+  EXPECT_EQ(r.code, 1) << r;
+  EXPECT_THAT(r.err, IsEmpty());
+  EXPECT_THAT(r.out, HasSubstr("FAILS"));
+  bool seen = false;
+  for (const auto& line : lines_of(r.out)) {
+    if (line.find("energy conservation") != std::string::npos) {
+      EXPECT_THAT(line, HasSubstr("FAILS")) << line;
+    }
+    if (line.find("reciprocity") != std::string::npos) {
+      EXPECT_THAT(line, HasSubstr("holds")) << line;
+    }
+    const std::string label = "albedo at normal incidence";
+    if (const auto at = line.find(label); at != std::string::npos) {
+      std::string value = line.substr(at + label.size());
+      value.erase(0, value.find_first_not_of(' '));
+      EXPECT_NEAR(number(value), 2 * kPi / 3, 1e-9) << line;
+      seen = true;
+    }
+  }
+  EXPECT_TRUE(seen) << r;
+}
+
+TEST_F(Cli, CheckKMadeForRvFailsInNhAndTheNhCoefficientHolds) {
+  const std::vector<std::string> args{"check", "--model", "log-normalized", "-p", "n=20", "--form", "nh",
+                                      "--step", "30", "--pairs", "500"};
+  const Result fails = run(args);
+  EXPECT_EQ(fails.code, 1) << fails;
+  EXPECT_THAT(fails.err, IsEmpty());
+  EXPECT_THAT(fails.out, HasSubstr("FAILS"));
+
+  const double k = only(parse_csv(ok({"normalize", "--model", "log", "--form", "nh", "--n", "20"}).out), "coef");
+  std::vector<std::string> with_coef = args;
+  with_coef.insert(with_coef.end(), {"--coef", fmt::format("{}", k), "--json"});
+  const Result r = ok(with_coef);
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r;
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 1u);
+  const auto& e = j[0];
+  EXPECT_EQ(e["model"], "log-normalized");
+  EXPECT_EQ(e["form"], "nh");
+  for (const char* key : {"conserves_energy", "reciprocal", "non_negative"}) {
+    ASSERT_TRUE(e.contains(key) && e[key].is_boolean()) << key << "\n" << e.dump(2);
+    EXPECT_TRUE(e[key].get<bool>()) << key;
+  }
+  for (const char* key : {"max_albedo", "max_albedo_theta_deg", "albedo_normal"})
+    ASSERT_TRUE(e.contains(key) && e[key].is_number()) << key << "\n" << e.dump(2);
+  EXPECT_NEAR(e["albedo_normal"].get<double>(), 1.0, 1e-8);
+  EXPECT_NEAR(e["max_albedo"].get<double>(), 1.0, 1e-7);
+  EXPECT_GE(e["max_albedo_theta_deg"].get<double>(), 0.0);
+  EXPECT_LT(e["max_albedo_theta_deg"].get<double>(), 90.0);
+}
+
+TEST_F(Cli, CheckSweepsAParameter) {
+  // Ward (√ normalization) at α = 0.3 reflects more than it receives near grazing: exit 1.
+  const Result r =
+      run({"check", "--model", "ward", "--sweep", "alpha=0.1,0.3", "--step", "30", "--pairs", "200", "--json"});
+  EXPECT_THAT(r.code, ::testing::AnyOf(0, 1)) << r;
+  EXPECT_THAT(r.err, IsEmpty());
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r;
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 2u) << r;
+  bool all_hold = true;
+  for (const auto& e : j) {
+    EXPECT_EQ(e["model"], "ward");
+    for (const char* key : {"conserves_energy", "reciprocal", "non_negative"}) {
+      ASSERT_TRUE(e.contains(key) && e[key].is_boolean()) << key << "\n" << e.dump(2);
+      all_hold = all_hold && e[key].get<bool>();
+    }
+    EXPECT_TRUE(e["max_albedo"].is_number());
+    EXPECT_TRUE(e["max_albedo_theta_deg"].is_number());
+    EXPECT_EQ(e["pairs"], 200);
+  }
+  EXPECT_EQ(r.code, all_hold ? 0 : 1) << r;
+  EXPECT_EQ(number(j[0]["alpha"].is_string() ? j[0]["alpha"].get<std::string>() : j[0]["alpha"].dump()), 0.1);
+  EXPECT_EQ(number(j[1]["alpha"].is_string() ? j[1]["alpha"].get<std::string>() : j[1]["alpha"].dump()), 0.3);
+  EXPECT_TRUE(j[0]["conserves_energy"].get<bool>()) << j[0].dump(2);
+  EXPECT_FALSE(j[1]["conserves_energy"].get<bool>()) << j[1].dump(2);
+  EXPECT_GT(j[1]["max_albedo"].get<double>(), 1.0);
+  EXPECT_GT(j[1]["max_albedo_theta_deg"].get<double>(), 80.0);
+}
+
+TEST_F(Cli, CheckBadInput) {
+  EXPECT_THAT(bad({"check", "--model", "log", "--n", "1", "--sweep", "n=2"}).err, HasSubstr("--sweep"));
+  EXPECT_THAT(bad({"check", "--model", "ward", "--sweep", "alpha"}).err, HasSubstr("alpha"));
+  EXPECT_THAT(bad({"check", "--model", "ward", "--sweep", "q=1:2"}).err, HasSubstr("q"));
+  EXPECT_THAT(bad({"check", "--model", "ward", "--step", "0"}).err, HasSubstr("--step"));
+  EXPECT_THAT(bad({"check", "--model", "ward", "--pairs", "0"}).err, HasSubstr("--pairs"));
+  EXPECT_THAT(bad({"check", "--model", "nope"}).err, HasSubstr("nope"));
+}
+
+// ---- error ----------------------------------------------------------------------------------
+
+TEST_F(Cli, ErrorOfLogAgainstPhong) {
+  // MATH.md §3: |F_log − c^n| peaks at 1/8 where c^n = 2^−3, for every n; F_log reaches 0 where
+  // c^n > 0, so the relative error in the attenuation zone is 1.
+  const Csv csv = parse_csv(ok({"error", "--model", "log", "--reference", "phong", "--n", "1,20,1000"}).out);
+  EXPECT_THAT(csv.columns,
+              ElementsAre("n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"));
+  ASSERT_EQ(csv.rows.size(), 3u);
+  for (const auto& row : csv.rows) {
+    const double n = row[0];
+    EXPECT_NEAR(row[1], 0.125, 1e-12) << "n = " << n;
+    EXPECT_NEAR(row[2], deg_of(std::acos(std::pow(2.0, -3 / n))), 1e-6) << "n = " << n;
+    EXPECT_GE(row[3], 0) << "n = " << n;
+    EXPECT_EQ(row[4], 1.0) << "n = " << n;
+  }
+  EXPECT_EQ(csv.rows[0][0], 1.0);
+  EXPECT_EQ(csv.rows[2][0], 1000.0);
+}
+
+TEST_F(Cli, ErrorOfSchlickAgainstPhongAndTheZone) {
+  const std::vector<std::string> args{"error", "--model", "schlick", "--reference", "phong", "--n", "2"};
+  const Csv half = parse_csv(ok(args).out);
+  EXPECT_NEAR(only(half, "max_abs"), 0.09, 0.005);
+  std::vector<std::string> narrow_args = args;
+  narrow_args.insert(narrow_args.end(), {"--zone", "0.9"});
+  const Csv narrow = parse_csv(ok(narrow_args).out);
+  EXPECT_EQ(only(narrow, "max_abs"), only(half, "max_abs"));  // the zone bounds the relative errors only
+  // A smaller epicenter (F_ref ≥ 0.9 inside F_ref ≥ 0.5): its max relative error can only drop.
+  EXPECT_NE(only(narrow, "max_rel_epicenter"), only(half, "max_rel_epicenter"));
+  EXPECT_LT(only(narrow, "max_rel_epicenter"), only(half, "max_rel_epicenter"));
+}
+
+TEST_F(Cli, ErrorBadInput) {
+  const std::vector<std::string> base{"error", "--model", "log", "--reference", "phong"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  EXPECT_THAT(bad(with({"--n", "20", "--zone", "0"})).err, HasSubstr("zone"));
+  EXPECT_THAT(bad(with({"--n", "20", "--zone", "1.5"})).err, HasSubstr("zone"));
+  EXPECT_THAT(bad({"error", "--model", "log", "--reference", "ggx", "--n", "20"}).err, HasSubstr("full BRDF"));
+  EXPECT_THAT(bad(with({"-p", "n=3"})).err, HasSubstr("--n"));
+  EXPECT_THAT(bad(with({"--n", "0"})).err, HasSubstr("0"));
 }
 
 // ---- models ---------------------------------------------------------------------------------
@@ -435,7 +711,8 @@ TEST_F(Cli, NormalizeRejectsAFullBrdf) { bad({"normalize", "--model", "ggx", "--
 TEST_F(Cli, HelpEverywhereHasAnExample) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"--help"}, {"models", "--help"}, {"eval", "--help"},
-        {"normalize", "--help"}, {"report", "--help"}}) {
+        {"normalize", "--help"}, {"report", "--help"}, {"albedo", "--help"},
+        {"check", "--help"}, {"error", "--help"}}) {
     const Result r = run(args);
     const std::string what = fmt::format("specula {}", fmt::join(args, " "));
     EXPECT_EQ(r.code, 0) << what << "\n" << r;
