@@ -65,6 +65,22 @@ void OutputOptions::emit(const io::Table& table) const {
   write_output(out, format == "json" ? io::to_json(table, round) : io::to_csv(table, round));
 }
 
+std::vector<double> option_values(std::string_view option, std::string_view spec) {
+  try {
+    return io::parse_values(spec);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(fmt::format("{}: {}", option, e.what()));
+  }
+}
+
+Model lobe_model_at(std::string_view command, std::string_view id, ParamValues params, double n,
+                    std::optional<Form> form) {
+  if (!make_model(id).is_lobe())
+    throw InvalidArgument(fmt::format("{} works on lobe models; '{}' is a full BRDF", command, id));
+  params["n"] = n;
+  return make_model(id, params, form);
+}
+
 void write_output(const std::string& out, const std::string& text) {
   if (out.empty()) {
     std::cout << text << std::flush;

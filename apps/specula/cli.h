@@ -40,6 +40,14 @@ struct OutputOptions {
 /// Thrown after a check's report is printed when a property fails: exit code 1.
 struct CheckFailed {};
 
+/// io::parse_values, with the option's name in the error message.
+std::vector<double> option_values(std::string_view option, std::string_view spec);
+
+/// The lobe model `id` at exponent n (other parameters from `params`); InvalidArgument naming
+/// `command` when `id` is a full BRDF.
+Model lobe_model_at(std::string_view command, std::string_view id, ParamValues params, double n,
+                    std::optional<Form> form = std::nullopt);
+
 /// Text to stdout, or atomically to `out` if non-empty.
 void write_output(const std::string& out, const std::string& text);
 

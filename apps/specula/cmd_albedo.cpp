@@ -22,7 +22,7 @@ struct AlbedoOptions {
 
 io::Table albedo_table(const AlbedoOptions& o) {
   const Model m = o.model.make();
-  const std::vector<double> degrees = io::parse_values(o.theta);
+  const std::vector<double> degrees = option_values("--theta", o.theta);
   for (const double d : degrees) analysis::require_incidence_deg(d, "--theta");
   const bool monte_carlo = o.method == "monte-carlo";
   io::Table table{{"theta_deg", "albedo"}, {}, model_meta(m)};

@@ -30,12 +30,12 @@ struct Case {
 /// The parameter to sweep and its values: --n RANGE is --sweep n=RANGE.
 std::pair<std::string, std::vector<double>> sweep_of(const CheckCliOptions& o) {
   if (!o.n.empty() && !o.sweep.empty()) throw InvalidArgument("give --n or --sweep, not both");
-  if (!o.n.empty()) return {"n", io::parse_values(o.n)};
+  if (!o.n.empty()) return {"n", option_values("--n", o.n)};
   if (o.sweep.empty()) return {};
   const auto eq = o.sweep.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=RANGE", o.sweep));
-  return {o.sweep.substr(0, eq), io::parse_values(std::string_view(o.sweep).substr(eq + 1))};
+  return {o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1))};
 }
 
 std::vector<Model> models_to_check(const CheckCliOptions& o) {
@@ -115,8 +115,8 @@ void add_check_command(CLI::App& app) {
   cmd->add_option("--step", o->check.grid_step_deg, "θ_i grid step in degrees before refinement")
       ->capture_default_str()->check(CLI::Range(0.01, 45.0));
   cmd->add_option("--grazing", o->grazing,
-                  "Grazing angles (degrees, < 90) probed beyond the grid: list (default 89.5,89.9; e.g. "
-                  "89.99,89.999 to see divergence at grazing, at a cost for microfacet models)")
+                  "Grazing angles (degrees, < 90) probed beyond the grid, e.g. 89.99,89.999 to see "
+                  "divergence at grazing (seconds per angle for Cook-Torrance)")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
   cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout");
@@ -129,7 +129,7 @@ void add_check_command(CLI::App& app) {
       "  specula check --model log-normalized -p n=20 --form nh   # k made for rv breaks in nh\n"
       "  specula check --model log -p n=20 --form nh --coef $(specula normalize --model log --form nh --n 20 | tail -1 | cut -d, -f2)");
   cmd->callback([o] {
-    o->check.grazing_deg = io::parse_values(o->grazing);
+    o->check.grazing_deg = option_values("--grazing", o->grazing);
     std::vector<Case> cases;
     for (Model& m : models_to_check(*o)) {
       auto result = analysis::check(m, o->check);

@@ -18,17 +18,14 @@ struct ErrorOptions {
   double zone = 0.5;
 };
 
-lobes::Lobe lobe_of(std::string_view id, ParamValues params, double n) {
-  if (make_model(id).is_lobe()) params["n"] = n;  // else the full-BRDF message below, not "no parameter n"
-  const Model m = make_model(id, params);
-  if (!m.is_lobe()) throw InvalidArgument(fmt::format("error compares lobes; '{}' is a full BRDF", id));
-  return m.lobe();
+lobes::Lobe lobe_of(std::string_view id, const ParamValues& params, double n) {
+  return lobe_model_at("error", id, params, n).lobe();
 }
 
 io::Table error_table(const ErrorOptions& o) {
   const ParamValues params = o.model.param_values();
   if (params.contains("n")) throw InvalidArgument("give n with --n, not --param");
-  const std::vector<double> ns = io::parse_values(o.n);
+  const std::vector<double> ns = option_values("--n", o.n);
   for (const double n : ns) lobe_of(o.model.id, params, n), lobe_of(o.reference, {}, n);  // validate first
   io::Table table{{"n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"},
                   {},
@@ -49,13 +46,14 @@ void add_error_command(CLI::App& app) {
   o->model.add_to(*cmd, false);
   cmd->add_option("--reference,-r", o->reference, "The reference lobe model")->capture_default_str();
   cmd->add_option("--n", o->n, "Exponents: list or range")->capture_default_str();
-  cmd->add_option("--zone", o->zone, "The epicenter: where the reference ≥ zone × its peak")->capture_default_str()
+  cmd->add_option("--zone", o->zone, "The epicenter: where the reference ≥ zone × its peak; zone in (0, 1)")->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   o->output.add_to(*cmd);
   cmd->footer(
       "Compares the bare lobes F(c) (no coefficient) at the same n. max_abs = max |F − F_ref| and\n"
       "argmax_abs_deg = the angle acos(c) where it occurs; max_rel_epicenter = max |F − F_ref|/F_ref\n"
-      "where F_ref ≥ zone; max_rel_attenuation = the same where 0 < F_ref < zone (inf: unbounded).\n"
+      "where F_ref ≥ zone; max_rel_attenuation = the same where 0 < F_ref < zone (astronomical or inf:\n"
+      "unbounded, as for Schlick's tail against c^n).\n"
       "Maxima are exact (dense sampling in u = −ln c, then golden-section refinement). Examples:\n"
       "  specula error --model log --reference phong --n 1:1000@50:log      # the paper's Figs. 3-4\n"
       "  specula error --model schlick --reference phong --n 2,20 --format json");

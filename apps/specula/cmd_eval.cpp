@@ -24,7 +24,7 @@ io::Table eval_at_cosines(const Model& m, const EvalOptions& o) {
     throw InvalidArgument(fmt::format(
         "model '{}' is a full BRDF: give directions with --theta-i and --theta-o", m.id()));
   io::Table table{{"cos", "value"}, {}, model_meta(m)};
-  for (const double c : io::parse_values(o.cos)) {
+  for (const double c : option_values("--cos", o.cos)) {
     if (c < -1 || c > 1) throw InvalidArgument(fmt::format("--cos {} is outside [-1, 1]", c));
     table.rows.push_back({c, o.bare_lobe ? lobes::eval(m.lobe(), c) : m.at_cos(c)});
   }
@@ -45,7 +45,7 @@ io::Table eval_at_directions(const Model& m, const EvalOptions& o) {
   io::Table table{{"theta_o_deg", "value"}, {}, model_meta(m)};
   table.meta.emplace_back("theta_i_deg", io::format_number(*o.theta_i));
   table.meta.emplace_back("phi_o_deg", io::format_number(o.phi_o));
-  for (const double theta_o : io::parse_values(o.theta_o)) {
+  for (const double theta_o : option_values("--theta-o", o.theta_o)) {
     check_polar(theta_o, "--theta-o");
     table.rows.push_back({theta_o, m(n, l, from_spherical(radians(theta_o), radians(o.phi_o)))});
   }

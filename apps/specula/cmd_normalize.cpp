@@ -26,14 +26,6 @@ normalize::Method parse_method(const std::string& method) {
   return normalize::Method::automatic;
 }
 
-Model lobe_model_at(std::string_view id, ParamValues params, double n, std::optional<Form> form) {
-  params["n"] = n;
-  Model m = make_model(id, params, form);
-  if (!m.is_lobe())
-    throw InvalidArgument(fmt::format("normalize works on lobe models; '{}' is a full BRDF", id));
-  return m;
-}
-
 io::Table normalize_table(const NormalizeOptions& o) {
   ParamValues params = o.model.param_values();
   if (params.contains("n")) throw InvalidArgument("give n with --n, not --param");
@@ -49,9 +41,9 @@ io::Table normalize_table(const NormalizeOptions& o) {
   if (!o.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
 
   const auto ns = o.n.empty() ? std::vector<double>{make_model(o.model.id).param("n")}
-                              : io::parse_values(o.n);
+                              : option_values("--n", o.n);
   for (const double n : ns) {
-    const Model m = lobe_model_at(o.model.id, params, n, form);
+    const Model m = lobe_model_at("normalize", o.model.id, params, n, form);
     if (table.meta.size() == 3) table.meta.emplace_back("form", to_string(m.form()));
     const double coef = strict ? analysis::strict_coefficient(m, o.step)
                                : normalize::coefficient(m.lobe(), m.form(), method);
@@ -61,7 +53,7 @@ io::Table normalize_table(const NormalizeOptions& o) {
       row.insert(row.end(), {q, (q - coef) / coef});
     }
     if (!o.compare.empty()) {
-      const double other = lobe_model_at(o.compare, {}, n, std::nullopt).coef();
+      const double other = lobe_model_at("--compare", o.compare, {}, n).coef();
       row.insert(row.end(), {other, (other - coef) / coef});  // k_other·2π·Int − 1
     }
     table.rows.push_back(std::move(row));
