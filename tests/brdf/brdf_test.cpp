@@ -65,6 +65,17 @@ TEST(LobeBrdf, FormCosinesMatchTheAngles) {
       }
 }
 
+TEST(LobeBrdf, CompileTimeLobeMatchesTheRegistryModel) {
+  // A renderer's float path: LobeBrdf<lobes::Log<float>> against the run-time double Model.
+  const Model m = make_model("log-normalized", {{"n", 20}});
+  const LobeBrdf<lobes::Log<float>> brdf{{20.0f}, Form::rv, m.coef()};
+  for (const double to : {0.0, 0.2, 0.4}) {
+    const Vec3 l = from_spherical(0.3, 0.0), v = from_spherical(to, std::numbers::pi);
+    const Vec3T<float> lf{float(l.x), float(l.y), float(l.z)}, vf{float(v.x), float(v.y), float(v.z)};
+    EXPECT_NEAR(brdf(Vec3T<float>{0, 0, 1}, lf, vf), m(kNormal, l, v), 1e-5 * (1 + m(kNormal, l, v))) << to;
+  }
+}
+
 TEST(LobeBrdf, ZeroBelowTheHorizon) {
   const Vec3 up = from_spherical(0.5, 0.0), down = from_spherical(2.0, 1.0);
   for (const auto& info : models()) {
