@@ -1,0 +1,91 @@
+#pragma once
+// Expressions shared by symbolic regression, code generation and user-defined lobes.
+// An Expression is a postfix (RPN) array of nodes over named variables: compact to copy, cheap to
+// mutate, and evaluated by a stack machine. parse() reads infix text:
+//   numbers 2, 0.5, .5, 1e-3, 2.5E+7   variables (identifiers)   + - * / ^   unary -   ( )
+//   log log2 exp sqrt abs sin cos acos (one argument)   pow min max (two arguments)
+// ^ is right-associative and binds tighter than unary minus (-2^2 = -4, 2^-1 = 0.5). Function names
+// are reserved. Evaluation follows IEEE semantics (x/0 is ±inf or nan, nothing throws);
+// min(a, b) = b < a ? b : a and max(a, b) = a < b ? b : a, exactly std::min / std::max.
+// Printers: to_infix (canonical, parse(to_infix(e)) evaluates bit-identically to e), to_cpp,
+// to_glsl (floats), to_latex, to_python (Python raises where IEEE gives inf/nan, e.g. 1 / 0).
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "specula/error.h"
+
+namespace specula::expr {
+
+enum class Op : std::uint8_t {
+  constant, variable,                            // leaves
+  add, sub, mul, div, pow, min, max,             // two operands
+  neg, log, log2, exp, sqrt, abs, sin, cos, acos  // one operand
+};
+
+struct Node {
+  Op op = Op::constant;
+  std::uint32_t var = 0;  // Op::variable: index into Expression::variables()
+  double value = 0;       // Op::constant
+};
+
+/// Operands an op takes: 0 for leaves, 1 or 2 otherwise.
+int arity(Op op);
+
+/// The call name of a function op ("log", "pow", …); empty for operators and leaves.
+std::string_view function_name(Op op);
+
+/// The op a call name denotes, if any.
+std::optional<Op> function_named(std::string_view name);
+
+class Expression {
+ public:
+  /// Throws InvalidArgument unless `nodes` is a well-formed postfix expression: no operand
+  /// missing, exactly one result, finite constants, variable indices in range, and `variables`
+  /// distinct identifiers that are not function names.
+  Expression(std::vector<Node> nodes, std::vector<std::string> variables);
+
+  std::span<const Node> nodes() const { return nodes_; }
+  const std::vector<std::string>& variables() const { return variables_; }
+  std::size_t size() const { return nodes_.size(); }
+  /// The most values the evaluation stack holds at once.
+  std::size_t stack_depth() const { return stack_depth_; }
+
+ private:
+  std::vector<Node> nodes_;
+  std::vector<std::string> variables_;
+  std::size_t stack_depth_ = 0;
+};
+
+/// A syntax error; the message reads "column N: …" (1-based).
+class ParseError : public InvalidArgument {
+ public:
+  using InvalidArgument::InvalidArgument;
+};
+
+/// With `variables` given, the expression has exactly those variables (in that order) and other
+/// identifiers are errors; otherwise its variables are the identifiers in order of first use.
+Expression parse(std::string_view text, std::vector<std::string> variables = {});
+
+/// Parsing nests at most this deep (parentheses, unary minus, exponents).
+inline constexpr int kMaxNesting = 1000;
+
+std::string to_infix(const Expression& e);
+std::string to_cpp(const Expression& e);
+std::string to_glsl(const Expression& e);
+std::string to_latex(const Expression& e);
+std::string to_python(const Expression& e);
+
+/// `variables[i]` is the value of e.variables()[i]; throws InvalidArgument if too few are given.
+double evaluate(const Expression& e, std::span<const double> variables);
+
+/// out[r] = evaluate(e, row r), where columns[i][r] is variable i in row r. Works through the rows
+/// in chunks, one whole chunk per node. Throws InvalidArgument if a column is missing or its
+/// length differs from out.size().
+void evaluate_batch(const Expression& e, std::span<const std::span<const double>> columns,
+                    std::span<double> out);
+
+}  // namespace specula::expr
