@@ -17,7 +17,9 @@ debug: deps
 test: debug
 	@ctest --preset debug
 
-report: build
+report: deps
+	@cmake --preset release >/dev/null
+	@cmake --build --preset release --target specula_cli
 	@build/release/specula report --out report
 
 bench: build
