@@ -7,6 +7,7 @@
 #include <random>
 #include <tbb/parallel_for.h>
 
+#include "../numeric/golden_section.h"
 #include "specula/analysis/albedo.h"
 #include "specula/error.h"
 
@@ -15,25 +16,6 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kRefineTolerance = 1e-4;  // degrees
-
-/// Maximizes f on [a, b] by golden-section search (robust at kinks, where maxima of clipped
-/// lobes sit); returns the abscissa.
-template <class F>
-double golden_section_max(const F& f, double a, double b, double tolerance) {
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double c = b - r * (b - a), d = a + r * (b - a);
-  double fc = f(c), fd = f(d);
-  while (b - a > tolerance) {
-    if (fc >= fd) {
-      b = d, d = c, fd = fc;
-      c = b - r * (b - a), fc = f(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + r * (b - a), fd = f(d);
-    }
-  }
-  return fc >= fd ? c : d;
-}
 
 /// Uniform on the upper hemisphere, including grazing directions.
 Vec3 random_direction(std::mt19937_64& rng) {
@@ -67,9 +49,8 @@ MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<doub
   const bool stationary_at_normal = best == 0 && rho_at(step_deg / 16) <= rho[0];
   if (best + 1 < degrees.size() && !stationary_at_normal) {
     const double lo = degrees[best == 0 ? 0 : best - 1], hi = degrees[best + 1];
-    const double deg = golden_section_max(rho_at, lo, hi, kRefineTolerance);
-    const double value = rho_at(deg);
-    if (value > result.value) result = {value, deg};
+    const auto refined = numeric::golden_section_max(rho_at, lo, hi, kRefineTolerance);
+    if (refined.value > result.value) result = {refined.value, refined.at};
   }
   return result;
 }

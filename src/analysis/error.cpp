@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "../numeric/golden_section.h"
 #include "specula/error.h"
 
 namespace specula::analysis {
@@ -16,10 +17,7 @@ constexpr int kSamplesPerWidth = 64;
 constexpr int kNearWidths = 64;
 constexpr int kFarSamples = 2048;
 
-struct Maximum {
-  double value = 0;
-  double at = 0;
-};
+using numeric::Maximum;
 
 /// Maximizes g over [a, b] sampled at `grid` (sorted, within [a, b]): the best sample, then
 /// golden-section search in the bracket of its neighbours.
@@ -29,23 +27,13 @@ Maximum maximize(const G& g, const std::vector<double>& grid) {
   std::size_t best_index = 0;
   for (std::size_t i = 0; i < grid.size(); ++i) {
     const double value = g(grid[i]);
-    if (value > best.value) best = {value, grid[i]}, best_index = i;
+    if (value > best.value) best = {grid[i], value}, best_index = i;
   }
   if (grid.size() < 3) return best;
-  double lo = grid[best_index == 0 ? 0 : best_index - 1];
-  double hi = grid[std::min(best_index + 1, grid.size() - 1)];
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double c = hi - r * (hi - lo), d = lo + r * (hi - lo), gc = g(c), gd = g(d);
-  while (hi - lo > 1e-15 * (1 + hi)) {
-    if (gc >= gd) {
-      hi = d, d = c, gd = gc, c = hi - r * (hi - lo), gc = g(c);
-    } else {
-      lo = c, c = d, gc = gd, d = lo + r * (hi - lo), gd = g(d);
-    }
-  }
-  for (const auto& [value, at] : {Maximum{gc, c}, Maximum{gd, d}})
-    if (value > best.value) best = {value, at};
-  return best;
+  const double lo = grid[best_index == 0 ? 0 : best_index - 1];
+  const double hi = grid[std::min(best_index + 1, grid.size() - 1)];
+  const Maximum refined = numeric::golden_section_max(g, lo, hi, 1e-15 * (1 + hi));
+  return refined.value > best.value ? refined : best;
 }
 
 /// Samples of [a, b]: dense (kSamplesPerWidth per width) up to kNearWidths widths, log-spaced

@@ -1,6 +1,7 @@
 // The model catalogue: MATH.md §2, one entry per model id.
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "specula/error.h"
 #include "specula/models/model.h"
@@ -194,15 +195,15 @@ Model Model::with_coef(double k) const {
 namespace {
 
 std::string param_names(const ModelInfo& info) {
-  std::string names;
-  for (const auto& p : info.params) names += (names.empty() ? "" : ", ") + std::string(p.name);
-  return names;
+  std::vector<std::string_view> names;
+  for (const auto& p : info.params) names.push_back(p.name);
+  return fmt::format("{}", fmt::join(names, ", "));
 }
 
 std::string model_ids() {
-  std::string ids;
-  for (const auto& m : models()) ids += (ids.empty() ? "" : ", ") + std::string(m.id);
-  return ids;
+  std::vector<std::string_view> ids;
+  for (const auto& m : models()) ids.push_back(m.id);
+  return fmt::format("{}", fmt::join(ids, ", "));
 }
 
 }  // namespace
