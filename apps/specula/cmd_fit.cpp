@@ -1,0 +1,238 @@
+// specula fit: symbolic regression on a CSV file (the paper's Figs. 7-8, without TuringBot).
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "cli.h"
+#include "specula/error.h"
+#include "specula/fit/fit.h"
+#include "specula/io/csv.h"
+
+namespace specula::cli {
+namespace {
+
+struct FitOptions {
+  std::string data, target, vars, ops = "+,*,/", constants = "fitted", weights = "default";
+  std::string metric = "rms", split = "random", choose = "parsimonious";
+  std::string format = "table", emit, out;
+  fit::Options search;
+  std::optional<std::int64_t> generations, evaluations;
+  std::optional<double> target_error;
+  bool quiet = false;
+};
+
+std::vector<std::string> split_names(std::string_view text) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const auto end = std::min(text.find(',', start), text.size());
+    names.emplace_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
+
+// The variables and the target, every value finite (a bad one is named by file line).
+fit::Data load(const FitOptions& o) {
+  const io::CsvData csv = io::read_csv(o.data);
+  fit::Data data;
+  std::vector<std::size_t> used;
+  const std::size_t target = io::column_index(csv, o.target);
+  if (o.vars.empty()) {
+    for (std::size_t c = 0; c < csv.columns.size(); ++c)
+      if (c != target) used.push_back(c);
+  } else {
+    for (const auto& name : split_names(o.vars)) used.push_back(io::column_index(csv, name));
+  }
+  if (used.empty()) throw InvalidArgument(fmt::format("{}: no variable columns besides the target", o.data));
+  for (std::size_t c : used) {
+    if (c == target) throw InvalidArgument(fmt::format("'{}' is both the target and a variable", o.target));
+    data.variables.push_back(csv.columns[c]);
+    data.columns.push_back(csv.values[c]);
+  }
+  data.target = csv.values[target];
+  used.push_back(target);
+  for (std::size_t r = 0; r < data.target.size(); ++r)
+    for (std::size_t c : used)
+      if (!std::isfinite(csv.values[c][r]))
+        throw InvalidArgument(fmt::format("{} line {}: column \"{}\" is {}, every value must be finite",
+                                          o.data, csv.lines[r], csv.columns[c], csv.values[c][r]));
+  return data;
+}
+
+fit::Options search_options(const FitOptions& o) {
+  fit::Options s = o.search;
+  s.operators = fit::parse_operators(o.ops);
+  s.constants = fit::parse_constants(o.constants);
+  s.weights = fit::SizeWeights::parse(o.weights);
+  s.metric = fit::parse_metric(o.metric);
+  if (o.split != "random" && o.split != "last")
+    throw InvalidArgument(fmt::format("--split must be random or last, got '{}'", o.split));
+  s.split = o.split == "last" ? fit::Split::last : fit::Split::random;
+  s.choice = fit::parse_choice(o.choose);
+  s.max_generations = o.generations;
+  s.max_evaluations = o.evaluations;
+  s.target_error = o.target_error;
+  return s;
+}
+
+std::string shown(const expr::Expression& e) { return expr::to_infix(fit::rounded(e, 6)); }
+
+std::string error_text(std::optional<double> e) { return e ? fmt::format("{:.6g}", *e) : "-"; }
+
+std::string front_table(const fit::Result& r, fit::Metric metric) {
+  const auto m = fit::metric_name(metric);
+  std::string text = fmt::format("{:>4}  {:<12}  {:<12}  {}\n", "size", fmt::format("train {}", m),
+                                 fmt::format("test {}", m), "formula");
+  for (std::size_t i = 0; i < r.front.size(); ++i) {
+    const auto& c = r.front[i];
+    text += fmt::format("{:>4}  {:<12}  {:<12}  {}{}\n", c.size, error_text(c.train_error),
+                        error_text(c.test_error), shown(c.formula), i == r.chosen ? "   <- chosen" : "");
+  }
+  return text;
+}
+
+nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
+  auto entry = [](const fit::Candidate& c) {
+    nlohmann::json j{{"size", c.size}, {"train_error", c.train_error},
+                     {"test_error", c.test_error ? nlohmann::json(*c.test_error) : nlohmann::json()},
+                     {"formula", expr::to_infix(c.formula)}};
+    return j;
+  };
+  nlohmann::json j{{"data", o.data}, {"target", o.target}, {"metric", o.metric},
+                   {"evaluations", r.evaluations}, {"generations", r.generations},
+                   {"seconds", r.seconds}, {"stopped_by", r.stopped_by},
+                   {"choose", o.choose}, {"front", nlohmann::json::array()}};
+  for (const auto& c : r.front) j["front"].push_back(entry(c));
+  j["chosen"] = entry(r.front[r.chosen]);
+  return j;
+}
+
+// The chosen formula as a function in another language, constants at full precision.
+std::string emitted(const fit::Result& r, const FitOptions& o) {
+  const auto& c = r.front[r.chosen];
+  const auto& vars = c.formula.variables();
+  const std::string origin =
+      fmt::format("specula fit: {} from {} ({}), size {}, train {} {:.6g}", o.target, o.data,
+                  fmt::join(vars, ", "), c.size, o.metric, c.train_error);
+  std::vector<std::string> params;
+  if (o.emit == "cpp") {
+    for (const auto& v : vars) params.push_back("double " + v);
+    return fmt::format("// {}\ninline double fitted_{}({}) {{ return {}; }}\n", origin, o.target,
+                       fmt::join(params, ", "), expr::to_cpp(c.formula));
+  }
+  if (o.emit == "glsl") {
+    for (const auto& v : vars) params.push_back("float " + v);
+    return fmt::format("// {}\nfloat fitted_{}({}) {{ return {}; }}\n", origin, o.target,
+                       fmt::join(params, ", "), expr::to_glsl(c.formula));
+  }
+  if (o.emit == "python")
+    return fmt::format("import math\n\n\ndef fitted_{}({}):\n    \"\"\"{}\"\"\"\n    return {}\n",
+                       o.target, fmt::join(vars, ", "), origin, expr::to_python(c.formula));
+  return fmt::format("% {}\n{} = {}\n", origin, o.target, expr::to_latex(c.formula));
+}
+
+// On a terminal: the front each time it improves, and a status line.
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(fit::Metric metric) : metric_(metric) {}
+  void operator()(const fit::Progress& p) {
+    std::string front;
+    for (const auto& c : *p.front) front += fmt::format("{:>4}  {:<12.6g}  {}\n", c.size, c.train_error, shown(c.formula));
+    std::string out = "\r\033[K";
+    if (front != last_front_)
+      out += fmt::format("front after {} evaluations ({:.1f} s), {}:\n{}", p.evaluations,
+                         p.elapsed_s, fit::metric_name(metric_), front);
+    last_front_ = front;
+    out += fmt::format("{:.1f} s, {:.0f} s left · {} evaluations, {:.0f}/s · generation {}",
+                       p.elapsed_s, p.time_left_s, p.evaluations,
+                       static_cast<double>(p.evaluations) / std::max(p.elapsed_s, 1e-9), p.generations);
+    std::cerr << out << std::flush;
+  }
+  ~ProgressPrinter() { std::cerr << "\r\033[K" << std::flush; }
+
+ private:
+  fit::Metric metric_;
+  std::string last_front_;
+};
+
+void run(const FitOptions& o) {
+  if (o.format != "table" && o.format != "json")
+    throw InvalidArgument(fmt::format("--format must be table or json, got '{}'", o.format));
+  const fit::Data data = load(o);
+  const fit::Options options = search_options(o);
+  if (!o.emit.empty() && o.emit != "cpp" && o.emit != "glsl" && o.emit != "latex" && o.emit != "python")
+    throw InvalidArgument(fmt::format("--emit must be cpp, glsl, latex or python, got '{}'", o.emit));
+  fit::Result result;
+  if (!o.quiet && isatty(STDERR_FILENO)) {
+    ProgressPrinter printer(options.metric);
+    result = fit::search(data, options, std::ref(printer));
+  } else {
+    result = fit::search(data, options);
+  }
+  std::string text;
+  if (!o.emit.empty())
+    text = emitted(result, o);
+  else if (o.format == "json")
+    text = front_json(result, o).dump(2) + "\n";
+  else
+    text = front_table(result, options.metric) +
+           fmt::format("{} evaluations, {} generations in {:.1f} s (stopped by {}); chosen: {}\n",
+                       result.evaluations, result.generations, result.seconds, result.stopped_by,
+                       o.choose);
+  write_output(o.out, text);
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto o = std::make_shared<FitOptions>();
+  auto* cmd = app.add_subcommand("fit", "Symbolic regression: find closed-form formulas for a CSV column");
+  cmd->add_option("--data", o->data, "CSV file with a header line")->required();
+  cmd->add_option("--target", o->target, "The column to fit")->required();
+  cmd->add_option("--vars", o->vars, "Variable columns, comma-separated (default: every other column)");
+  cmd->add_option("--ops", o->ops, "Operators: some of + - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos")
+      ->capture_default_str();
+  cmd->add_option("--constants", o->constants, "fitted | integer (fitted, then rounded) | none")->capture_default_str();
+  cmd->add_option("--max-size", o->search.max_size, "Largest formula, in weighted nodes")->capture_default_str();
+  cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\"")
+      ->capture_default_str();
+  cmd->add_option("--metric", o->metric, "rms | mae | max-abs | mean-relative | r2")->capture_default_str();
+  cmd->add_option("--test-fraction", o->search.test_fraction, "Rows held out for the test error, in [0, 1)")
+      ->capture_default_str();
+  cmd->add_option("--split", o->split, "Which rows are held out: random | last")->capture_default_str();
+  cmd->add_option("--seed", o->search.seed, "Seed of the search and of the random split")->capture_default_str();
+  cmd->add_option("--time", o->search.time_limit_s, "Time budget in seconds")->capture_default_str();
+  cmd->add_option("--generations", o->generations, "Generation budget (per island)");
+  cmd->add_option("--evaluations", o->evaluations, "Budget in formulas fitted");
+  cmd->add_option("--target-error", o->target_error, "Stop once a formula's train error is this low (R² this high)");
+  cmd->add_option("--threads", o->search.threads, "Threads; 0 = all cores (the result does not depend on it)")
+      ->capture_default_str();
+  cmd->add_option("--islands", o->search.islands, "Islands of the genetic search")->capture_default_str();
+  cmd->add_option("--population", o->search.population, "Formulas per island")->capture_default_str();
+  cmd->add_option("--enumerate-size", o->search.enumerate_max_size, "Enumerate every distinct form up to this size first")
+      ->capture_default_str();
+  cmd->add_option("--choose", o->choose, "Which front formula is the answer: parsimonious | knee | best")
+      ->capture_default_str();
+  cmd->add_option("--format", o->format, "table | json")->capture_default_str();
+  cmd->add_option("--emit", o->emit, "Print only the chosen formula as a function: cpp | glsl | latex | python");
+  cmd->add_option("--out", o->out, "Write to FILE (atomically) instead of stdout");
+  cmd->add_flag("--quiet,-q", o->quiet, "No progress on the terminal");
+  cmd->footer(
+      "Prints the Pareto front: for each size, the most accurate formula found that beats every\n"
+      "smaller one, with its train (and test) error. The chosen formula (default rule\n"
+      "'parsimonious') is the smallest whose error is within 1.5x of the front's best (test error\n"
+      "when rows are held out); 'knee' is the point furthest below the chord of the front in\n"
+      "(size, log error); 'best' is the lowest error. Constants are fitted by least squares\n"
+      "(exactly where they enter linearly, else Levenberg-Marquardt). The same --seed gives the same\n"
+      "front for any --threads when the budget is --generations or --evaluations.\n"
+      "Examples:\n"
+      "  specula normalize --model log --n paper50 --round 3 --out coef.csv\n"
+      "  specula fit --data coef.csv --target coef --vars n --size-weights turingbot   # the paper's Fig. 8\n"
+      "  specula fit --data coef.csv --target coef --vars n --emit glsl");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace specula::cli

@@ -1,0 +1,132 @@
+#pragma once
+// Symbolic regression: closed-form formulas y ≈ f(x₁, …) found by an exhaustive, deduplicated
+// enumeration of small expressions followed by genetic programming on islands. Every candidate's
+// numeric constants are fitted: constants that enter linearly are solved exactly by least
+// squares, the others by Levenberg–Marquardt (variable projection). The result is the Pareto
+// front of size against error. With the same seed and budgets in generations or evaluations the
+// front is the same for any thread count (a time budget stops at a machine-dependent epoch).
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "specula/expr/expr.h"
+
+namespace specula::fit {
+
+/// The error a formula is ranked by. Constants are fitted in least squares either way (weighted by
+/// 1/y² for mean_relative); r2 is reported as R² and ranked by 1 − R².
+enum class Metric { rms, mae, max_abs, mean_relative, r2 };
+Metric parse_metric(std::string_view name);  // "rms", "mae", "max-abs", "mean-relative", "r2"
+std::string_view metric_name(Metric metric);
+
+/// The metric as a loss, lower is better: 1 − R² for r2, the metric itself otherwise.
+double to_loss(Metric metric, double error);
+
+/// The metric of `predicted` against `target` (same length, non-empty); nan inputs give inf.
+double measure(Metric metric, std::span<const double> predicted, std::span<const double> target);
+
+/// fitted: real constants fitted to the data; integer: fitted, then rounded to integers;
+/// none: formulas are built from the variables alone.
+enum class Constants { fitted, integer, none };
+Constants parse_constants(std::string_view name);
+
+/// How much each node adds to a formula's size (integers ≥ 1; leaves count 1).
+class SizeWeights {
+ public:
+  SizeWeights();  // every node counts 1
+  /// "default", "turingbot" (÷ counts 2, as the paper's tool appears to), or a list of overrides
+  /// such as "/=2,sqrt=3,exp=2" on top of the default.
+  static SizeWeights parse(std::string_view text);
+  int of(expr::Op op) const { return weight_[static_cast<std::size_t>(op)]; }
+  int of(std::span<const expr::Node> nodes) const;
+  void set(expr::Op op, int weight);
+
+ private:
+  std::array<int, 18> weight_{};
+};
+
+/// Parses an operator list such as "+,*,/" or "+,-,*,/,sin,cos,exp,log" (names as in expr).
+std::vector<expr::Op> parse_operators(std::string_view text);
+
+enum class Split { random, last };
+
+/// Which formula of the front is reported as the answer.
+///  parsimonious: the smallest whose error (test error when there is a test set) is within
+///                `choose_factor` of the front's best, or below 1e-10·rms(y) — accuracy first,
+///                then size.
+///  knee:         the point furthest below the chord from the smallest to the most accurate
+///                formula, in (size, log error) scaled to the unit square.
+///  best:         the lowest error.
+enum class Choice { parsimonious, knee, best };
+Choice parse_choice(std::string_view name);
+
+struct Options {
+  std::vector<expr::Op> operators = {expr::Op::add, expr::Op::mul, expr::Op::div};
+  Constants constants = Constants::fitted;
+  int max_size = 25;
+  SizeWeights weights;
+  Metric metric = Metric::rms;
+  double test_fraction = 0;  // in [0, 1): rows held out for the test error
+  Split split = Split::random;
+  std::uint64_t seed = 1;  // search and random split
+  double time_limit_s = 60;
+  std::optional<std::int64_t> max_generations;
+  std::optional<std::int64_t> max_evaluations;
+  std::optional<double> target_error;  // stop once a formula's train error is at most this
+  int threads = 0;                     // 0: all cores
+  int islands = 4;
+  int population = 200;        // per island
+  int enumerate_max_size = 9;  // exhaustive up to this size …
+  int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
+  Choice choice = Choice::parsimonious;
+  double choose_factor = 1.5;
+};
+
+/// Rows of named variables and a target. Every column has the same, non-zero length; values
+/// are finite (checked by search()).
+struct Data {
+  std::vector<std::string> variables;
+  std::vector<std::vector<double>> columns;
+  std::vector<double> target;
+};
+
+struct Candidate {
+  expr::Expression formula;
+  int size = 0;
+  double train_error = 0;
+  std::optional<double> test_error;
+};
+
+struct Progress {
+  double elapsed_s = 0;
+  double time_left_s = 0;
+  std::int64_t evaluations = 0;
+  std::int64_t generations = 0;
+  const std::vector<Candidate>* front = nullptr;
+};
+
+struct Result {
+  std::vector<Candidate> front;  // ascending size, strictly falling train error
+  std::size_t chosen = 0;        // index into front
+  std::int64_t evaluations = 0;  // formulas whose constants were fitted and error measured
+  std::int64_t generations = 0;
+  double seconds = 0;
+  std::string stopped_by;  // "time", "generations", "evaluations", "target error"
+};
+
+/// Throws InvalidArgument on bad data or options (each message names the problem).
+Result search(const Data& data, const Options& options,
+              const std::function<void(const Progress&)>& on_progress = {});
+
+/// The index of the formula `choice` picks from a non-empty front (errors in `metric`).
+std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice,
+                   double factor, double target_rms);
+
+/// `e` with every constant rounded to `digits` significant digits, for display.
+expr::Expression rounded(const expr::Expression& e, int digits);
+
+}  // namespace specula::fit

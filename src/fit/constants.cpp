@@ -1,0 +1,381 @@
+// Constant fitting: forward-mode derivatives over row chunks, then variable projection.
+#include "constants.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <bit>
+#include <fmt/format.h>
+#include <cmath>
+#include <numbers>
+
+namespace specula::fit {
+
+using expr::Node;
+using expr::Op;
+
+namespace {
+
+constexpr std::size_t kChunk = 128;
+
+struct Partials {
+  double value, da, db;
+};
+
+// f(a, b) and its partial derivatives; unary ops ignore b.
+template <Op op>
+Partials apply(double a, double b) {
+  if constexpr (op == Op::add) return {a + b, 1, 1};
+  if constexpr (op == Op::sub) return {a - b, 1, -1};
+  if constexpr (op == Op::mul) return {a * b, b, a};
+  if constexpr (op == Op::div) return {a / b, 1 / b, -a / (b * b)};
+  if constexpr (op == Op::pow) {
+    const double v = std::pow(a, b);
+    return {v, b * std::pow(a, b - 1), a > 0 ? v * std::log(a) : 0};
+  }
+  if constexpr (op == Op::min) return b < a ? Partials{b, 0, 1} : Partials{a, 1, 0};
+  if constexpr (op == Op::max) return a < b ? Partials{b, 0, 1} : Partials{a, 1, 0};
+  if constexpr (op == Op::neg) return {-a, -1, 0};
+  if constexpr (op == Op::log) return {std::log(a), 1 / a, 0};
+  if constexpr (op == Op::log2) return {std::log2(a), 1 / (a * std::numbers::ln2), 0};
+  if constexpr (op == Op::exp) {
+    const double v = std::exp(a);
+    return {v, v, 0};
+  }
+  if constexpr (op == Op::sqrt) {
+    const double v = std::sqrt(a);
+    return {v, 0.5 / v, 0};
+  }
+  if constexpr (op == Op::abs) return {std::abs(a), a < 0 ? -1.0 : 1.0, 0};
+  if constexpr (op == Op::sin) return {std::sin(a), std::cos(a), 0};
+  if constexpr (op == Op::cos) return {std::cos(a), -std::sin(a), 0};
+  if constexpr (op == Op::acos) return {std::acos(a), -1 / std::sqrt(1 - a * a), 0};
+  return {0, 0, 0};
+}
+
+// Values and partials of `op` over n rows: a ← f(a, b), da, db ← ∂f/∂a, ∂f/∂b.
+template <Op op>
+void apply_rows(std::size_t n, double* a, const double* b, double* da, double* db) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const Partials p = apply<op>(a[i], b ? b[i] : 0.0);
+    a[i] = p.value;
+    da[i] = p.da;
+    db[i] = p.db;
+  }
+}
+
+void apply_rows(Op op, std::size_t n, double* a, const double* b, double* da, double* db) {
+  switch (op) {
+    case Op::add: return apply_rows<Op::add>(n, a, b, da, db);
+    case Op::sub: return apply_rows<Op::sub>(n, a, b, da, db);
+    case Op::mul: return apply_rows<Op::mul>(n, a, b, da, db);
+    case Op::div: return apply_rows<Op::div>(n, a, b, da, db);
+    case Op::pow: return apply_rows<Op::pow>(n, a, b, da, db);
+    case Op::min: return apply_rows<Op::min>(n, a, b, da, db);
+    case Op::max: return apply_rows<Op::max>(n, a, b, da, db);
+    case Op::neg: return apply_rows<Op::neg>(n, a, b, da, db);
+    case Op::log: return apply_rows<Op::log>(n, a, b, da, db);
+    case Op::log2: return apply_rows<Op::log2>(n, a, b, da, db);
+    case Op::exp: return apply_rows<Op::exp>(n, a, b, da, db);
+    case Op::sqrt: return apply_rows<Op::sqrt>(n, a, b, da, db);
+    case Op::abs: return apply_rows<Op::abs>(n, a, b, da, db);
+    case Op::sin: return apply_rows<Op::sin>(n, a, b, da, db);
+    case Op::cos: return apply_rows<Op::cos>(n, a, b, da, db);
+    case Op::acos: return apply_rows<Op::acos>(n, a, b, da, db);
+    case Op::constant:
+    case Op::variable: return;
+  }
+}
+
+// The evaluation stack for one chunk: slot s holds a value block and a derivative block per
+// constant, each kChunk long. Only the blocks of the constants in depends(s) (a bit set) are
+// meaningful; the others are zero by definition.
+class ChunkStack {
+ public:
+  void reset(std::size_t depth, std::size_t constants) {
+    blocks_ = constants + 1;
+    if (data_.size() < depth * blocks_ * kChunk) data_.resize(depth * blocks_ * kChunk);
+    depends_.resize(depth);
+  }
+  double* value(std::size_t slot) { return &data_[slot * blocks_ * kChunk]; }
+  double* gradient(std::size_t slot, std::size_t k) { return value(slot) + (k + 1) * kChunk; }
+  std::uint64_t& depends(std::size_t slot) { return depends_[slot]; }
+
+ private:
+  std::size_t blocks_ = 1;
+  std::vector<double> data_;
+  std::vector<std::uint64_t> depends_;
+};
+
+std::size_t stack_depth(std::span<const Node> nodes) {
+  std::size_t top = 0, depth = 0;
+  for (const Node& n : nodes) {
+    top = top + 1 - static_cast<std::size_t>(expr::arity(n.op));
+    depth = std::max(depth, top);
+  }
+  return depth;
+}
+
+void push_leaf(ChunkStack& s, std::size_t slot, const Node& node, std::size_t constant_index,
+               const Rows& rows, std::size_t first, std::size_t n) {
+  double* v = s.value(slot);
+  if (node.op == Op::variable) {
+    std::copy_n(rows.columns[node.var].data() + first, n, v);
+    s.depends(slot) = 0;
+    return;
+  }
+  std::fill_n(v, n, node.value);
+  std::fill_n(s.gradient(slot, constant_index), n, 1.0);
+  s.depends(slot) = std::uint64_t{1} << constant_index;
+}
+
+// Applies `op` to slots a (and b = a + 1), leaving the result in slot a: the chain rule over
+// the constants either operand depends on.
+void apply_op(ChunkStack& s, Op op, std::size_t a, std::size_t n) {
+  const bool binary = expr::arity(op) == 2;
+  std::array<double, kChunk> da, db;
+  apply_rows(op, n, s.value(a), binary ? s.value(a + 1) : nullptr, da.data(), db.data());
+  const std::uint64_t in_a = s.depends(a), in_b = binary ? s.depends(a + 1) : 0;
+  for (std::uint64_t left = in_a | in_b; left != 0; left &= left - 1) {
+    const auto k = static_cast<std::size_t>(std::countr_zero(left));
+    const std::uint64_t bit = std::uint64_t{1} << k;
+    double* ka = s.gradient(a, k);
+    const double* kb = binary ? s.gradient(a + 1, k) : nullptr;
+    if (!(in_b & bit))
+      for (std::size_t i = 0; i < n; ++i) ka[i] *= da[i];
+    else if (in_a & bit)
+      for (std::size_t i = 0; i < n; ++i) ka[i] = ka[i] * da[i] + kb[i] * db[i];
+    else
+      for (std::size_t i = 0; i < n; ++i) ka[i] = kb[i] * db[i];
+  }
+  s.depends(a) = in_a | in_b;
+}
+
+}  // namespace
+
+void evaluate_with_gradient(std::span<const Node> nodes, const Rows& rows,
+                            std::vector<double>& value, std::vector<double>& gradient) {
+  const std::size_t count = rows.size();
+  const auto constants = static_cast<std::size_t>(
+      std::count_if(nodes.begin(), nodes.end(), [](const Node& n) { return n.op == Op::constant; }));
+  if (constants > kMaxConstants)
+    throw InvalidArgument(fmt::format("a formula may have at most {} constants", kMaxConstants));
+  value.resize(count);
+  gradient.assign(constants * count, 0);
+  thread_local ChunkStack s;
+  s.reset(stack_depth(nodes), constants);
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t n = std::min(kChunk, count - first);
+    std::size_t top = 0, constant_index = 0;
+    for (const Node& node : nodes) {
+      const int operands = expr::arity(node.op);
+      if (operands == 0) {
+        push_leaf(s, top++, node, node.op == Op::constant ? constant_index++ : constants, rows,
+                  first, n);
+      } else {
+        top -= static_cast<std::size_t>(operands);
+        apply_op(s, node.op, top++, n);
+      }
+    }
+    std::copy_n(s.value(0), n, value.data() + first);
+    for (std::uint64_t left = s.depends(0); left != 0; left &= left - 1) {
+      const auto k = static_cast<std::size_t>(std::countr_zero(left));
+      std::copy_n(s.gradient(0, k), n, gradient.data() + k * count + first);
+    }
+  }
+}
+
+namespace {
+
+// Whether the formula is affine in the constants marked in `chosen` (indexed by node).
+bool affine_in(std::span<const Node> nodes, const std::vector<bool>& chosen) {
+  std::vector<bool> depends;  // stack: does the operand involve a chosen constant?
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const Op op = nodes[i].op;
+    const int operands = expr::arity(op);
+    if (operands == 0) {
+      depends.push_back(chosen[i]);
+      continue;
+    }
+    const bool b = operands == 2 && depends.back();
+    if (operands == 2) depends.pop_back();
+    const bool a = depends.back();
+    const bool linear_op = op == Op::add || op == Op::sub || op == Op::neg ||
+                           (op == Op::mul && !(a && b)) || (op == Op::div && !b);
+    if ((a || b) && !linear_op) return false;
+    depends.back() = a || b;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<bool> linear_constants(std::span<const Node> nodes) {
+  std::vector<bool> chosen(nodes.size(), false);
+  std::vector<bool> linear;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].op != Op::constant) continue;
+    chosen[i] = true;
+    if (!affine_in(nodes, chosen)) chosen[i] = false;
+    linear.push_back(chosen[i]);
+  }
+  return linear;
+}
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+bool all_finite(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+// Variable projection over the constants of one genome.
+class Projection {
+ public:
+  Projection(Genome& g, const Rows& rows) : g_(g), rows_(rows) {
+    for (std::size_t i = 0; i < g.size(); ++i)
+      if (g[i].op == Op::constant) constant_nodes_.push_back(i);
+    const auto linear = linear_constants(g);
+    for (std::size_t k = 0; k < linear.size(); ++k) (linear[k] ? linear_ : nonlinear_).push_back(k);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      sqrt_w_.push_back(rows.weights.empty() ? 1.0 : std::sqrt(rows.weights[r]));
+  }
+
+  std::size_t nonlinear_count() const { return nonlinear_.size(); }
+  double& constant(std::size_t k) { return g_[constant_nodes_[k]].value; }
+
+  // Solves the linear constants for the current nonlinear ones; returns the weighted squared
+  // error (inf if the formula is undefined on the rows) and leaves value_/gradient_ current.
+  double solve_linear() {
+    evaluate_with_gradient(g_, rows_, value_, gradient_);
+    if (!all_finite(value_) || !all_finite(gradient_)) return INFINITY;
+    const std::size_t n = rows_.size();
+    if (!linear_.empty()) {
+      MatrixXd G(n, linear_.size());
+      VectorXd b(n);
+      for (std::size_t r = 0; r < n; ++r) {
+        double f0 = value_[r];
+        for (std::size_t j = 0; j < linear_.size(); ++j) {
+          const double gj = gradient_[linear_[j] * n + r];
+          f0 -= gj * constant(linear_[j]);
+          G(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) = sqrt_w_[r] * gj;
+        }
+        b(static_cast<Eigen::Index>(r)) = sqrt_w_[r] * (rows_.target[r] - f0);
+      }
+      const VectorXd s = G.completeOrthogonalDecomposition().solve(b);
+      if (!s.allFinite()) return INFINITY;
+      // The formula is affine in s: its new values follow without evaluating it again. The
+      // derivatives by the nonlinear constants keep their values at the old s (Kaufman).
+      for (std::size_t j = 0; j < linear_.size(); ++j) {
+        const double change = s(static_cast<Eigen::Index>(j)) - constant(linear_[j]);
+        for (std::size_t r = 0; r < n; ++r) value_[r] += change * gradient_[linear_[j] * n + r];
+        constant(linear_[j]) = s(static_cast<Eigen::Index>(j));
+      }
+    }
+    return squared_error();
+  }
+
+  double squared_error() const {
+    double sum = 0;
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const double e = sqrt_w_[r] * (rows_.target[r] - value_[r]);
+      sum += e * e;
+    }
+    return sum;
+  }
+
+  // The Gauss-Newton system (JᵀJ, Jᵀr) over the nonlinear constants at the current point.
+  std::pair<MatrixXd, VectorXd> normal_equations() const {
+    const std::size_t n = rows_.size(), m = nonlinear_.size();
+    MatrixXd J(n, m);
+    VectorXd r(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      r(static_cast<Eigen::Index>(i)) = sqrt_w_[i] * (rows_.target[i] - value_[i]);
+      for (std::size_t j = 0; j < m; ++j)
+        J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+            sqrt_w_[i] * gradient_[nonlinear_[j] * n + i];
+    }
+    return {J.transpose() * J, J.transpose() * r};
+  }
+
+  std::vector<double> nonlinear_values() {
+    std::vector<double> v;
+    for (std::size_t k : nonlinear_) v.push_back(constant(k));
+    return v;
+  }
+  void set_nonlinear(const std::vector<double>& v) {
+    for (std::size_t j = 0; j < nonlinear_.size(); ++j) constant(nonlinear_[j]) = v[j];
+  }
+  std::vector<double> all_values() {
+    std::vector<double> v;
+    for (std::size_t k = 0; k < constant_nodes_.size(); ++k) v.push_back(constant(k));
+    return v;
+  }
+  void set_all(const std::vector<double>& v) {
+    for (std::size_t k = 0; k < v.size(); ++k) constant(k) = v[k];
+  }
+  const std::vector<double>& value() const { return value_; }
+  void evaluate() { evaluate_with_gradient(g_, rows_, value_, gradient_); }
+  struct State {
+    std::vector<double> constants, value, gradient;
+  };
+  State state() { return {all_values(), value_, gradient_}; }
+  void restore(State s) {
+    set_all(s.constants);
+    value_ = std::move(s.value);
+    gradient_ = std::move(s.gradient);
+  }
+  std::size_t constant_count() const { return constant_nodes_.size(); }
+
+ private:
+  Genome& g_;
+  const Rows& rows_;
+  std::vector<std::size_t> constant_nodes_, linear_, nonlinear_;
+  std::vector<double> sqrt_w_, value_, gradient_;
+};
+
+constexpr int kMaxIterations = 30;
+
+// Levenberg–Marquardt on the nonlinear constants, each step re-solving the linear ones.
+double levenberg_marquardt(Projection& p, double cost) {
+  double lambda = 1e-3;
+  for (int iteration = 0; iteration < kMaxIterations && lambda < 1e12; ++iteration) {
+    auto [A, g] = p.normal_equations();
+    auto saved = p.state();
+    for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += lambda * std::max(A(i, i), 1e-12);
+    const VectorXd step = A.ldlt().solve(g);
+    if (!step.allFinite()) break;
+    auto theta = p.nonlinear_values();
+    for (std::size_t j = 0; j < theta.size(); ++j) theta[j] += step(static_cast<Eigen::Index>(j));
+    p.set_nonlinear(theta);
+    const double trial = p.solve_linear();
+    if (trial < cost) {
+      const bool converged = cost - trial <= 1e-13 * cost;
+      cost = trial;
+      lambda *= 0.3;
+      if (converged) break;
+    } else {
+      p.restore(std::move(saved));
+      lambda *= 10;
+    }
+  }
+  return cost;
+}
+
+}  // namespace
+
+std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode) {
+  Projection p(g, rows);
+  double cost = p.solve_linear();
+  if (std::isfinite(cost) && p.nonlinear_count() > 0) levenberg_marquardt(p, cost);
+  if (mode == Constants::integer && p.constant_count() > 0) {
+    auto values = p.all_values();
+    for (double& v : values) v = std::round(v);
+    p.set_all(values);
+    p.evaluate();
+  }
+  return p.value();
+}
+
+}  // namespace specula::fit

@@ -1,0 +1,51 @@
+#pragma once
+// Formulas under evolution: postfix node arrays (expr::Node) and the edits genetic programming
+// makes to them. A subtree of a postfix array is a contiguous range ending at its root.
+#include <cstdint>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "specula/expr/expr.h"
+#include "specula/fit/fit.h"
+
+namespace specula::fit {
+
+using Genome = std::vector<expr::Node>;
+using Rng = std::mt19937_64;
+
+/// start[i] is the first index of the subtree whose root is node i.
+std::vector<std::size_t> subtree_starts(std::span<const expr::Node> nodes);
+
+/// `nodes` with the subtree [first, last] replaced by `replacement`.
+Genome replaced(std::span<const expr::Node> nodes, std::size_t first, std::size_t last,
+                std::span<const expr::Node> replacement);
+
+/// What a search may build formulas from.
+struct Alphabet {
+  std::vector<expr::Op> unary, binary;
+  std::uint32_t variables = 1;
+  Constants constants = Constants::fitted;
+  SizeWeights weights;
+  int max_size = 25;
+
+  Alphabet(const Options& options, std::uint32_t variable_count);
+  expr::Node random_leaf(Rng& rng) const;
+  /// A random formula of at most `size` (weighted), grown from the root.
+  Genome random_tree(Rng& rng, int size) const;
+  /// Within the size limit, and with at most 64 constants (the derivative bit set).
+  bool fits(std::span<const expr::Node> nodes) const;
+};
+
+/// Subtree crossover: a random subtree of `a` replaced by a random subtree of `b`.
+Genome crossover(const Genome& a, const Genome& b, const Alphabet& alphabet, Rng& rng);
+
+/// One random mutation: replace a subtree, change one node, wrap a subtree in an operator,
+/// hoist a child over its parent, or perturb a constant.
+Genome mutate(const Genome& g, const Alphabet& alphabet, Rng& rng);
+
+/// A key equal for formulas that are the same up to the values of their free constants,
+/// commutativity and associativity of + and ×, and x ÷ c = c′·x.
+std::string canonical_key(std::span<const expr::Node> nodes);
+
+}  // namespace specula::fit

@@ -1,0 +1,204 @@
+// Parsing of the search's options, the error metrics, and the choice of a formula from a front.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+
+#include "specula/fit/fit.h"
+#include "specula/io/values.h"
+
+namespace specula::fit {
+
+using expr::Op;
+
+namespace {
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+  std::vector<std::string_view> parts;
+  while (true) {
+    const auto end = text.find(separator);
+    std::string_view part = text.substr(0, end);
+    while (!part.empty() && part.front() == ' ') part.remove_prefix(1);
+    while (!part.empty() && part.back() == ' ') part.remove_suffix(1);
+    parts.push_back(part);
+    if (end == std::string_view::npos) return parts;
+    text.remove_prefix(end + 1);
+  }
+}
+
+std::optional<Op> operator_named(std::string_view name) {
+  if (name == "+") return Op::add;
+  if (name == "-") return Op::sub;
+  if (name == "*") return Op::mul;
+  if (name == "/") return Op::div;
+  if (name == "^") return Op::pow;
+  if (name == "neg") return Op::neg;
+  const auto op = expr::function_named(name);
+  return op;
+}
+
+constexpr std::string_view kOperatorNames =
+    "+ - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos";
+
+}  // namespace
+
+Metric parse_metric(std::string_view name) {
+  if (name == "rms") return Metric::rms;
+  if (name == "mae") return Metric::mae;
+  if (name == "max-abs") return Metric::max_abs;
+  if (name == "mean-relative") return Metric::mean_relative;
+  if (name == "r2") return Metric::r2;
+  throw InvalidArgument(fmt::format(
+      "unknown metric '{}' (expected rms, mae, max-abs, mean-relative or r2)", name));
+}
+
+std::string_view metric_name(Metric metric) {
+  switch (metric) {
+    case Metric::rms: return "rms";
+    case Metric::mae: return "mae";
+    case Metric::max_abs: return "max-abs";
+    case Metric::mean_relative: return "mean-relative";
+    case Metric::r2: return "r2";
+  }
+  return "";
+}
+
+double to_loss(Metric metric, double error) { return metric == Metric::r2 ? 1 - error : error; }
+
+double measure(Metric metric, std::span<const double> predicted, std::span<const double> target) {
+  const auto n = static_cast<double>(target.size());
+  double sum = 0, largest = 0;
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    const double e = std::abs(predicted[i] - target[i]);
+    if (!std::isfinite(e)) return INFINITY;
+    largest = std::max(largest, e);
+    sum += metric == Metric::mae             ? e
+           : metric == Metric::mean_relative ? e / std::abs(target[i])
+                                             : e * e;
+  }
+  switch (metric) {
+    case Metric::rms: return std::sqrt(sum / n);
+    case Metric::mae:
+    case Metric::mean_relative: return sum / n;
+    case Metric::max_abs: return largest;
+    case Metric::r2: {
+      const double mean = std::accumulate(target.begin(), target.end(), 0.0) / n;
+      double total = 0;
+      for (double y : target) total += (y - mean) * (y - mean);
+      return total > 0 ? 1 - sum / total : (sum == 0 ? 1.0 : -INFINITY);
+    }
+  }
+  return INFINITY;
+}
+
+Constants parse_constants(std::string_view name) {
+  if (name == "fitted") return Constants::fitted;
+  if (name == "integer") return Constants::integer;
+  if (name == "none") return Constants::none;
+  throw InvalidArgument(
+      fmt::format("unknown constants mode '{}' (expected fitted, integer or none)", name));
+}
+
+SizeWeights::SizeWeights() { weight_.fill(1); }
+
+int SizeWeights::of(std::span<const expr::Node> nodes) const {
+  int size = 0;
+  for (const auto& n : nodes) size += of(n.op);
+  return size;
+}
+
+void SizeWeights::set(Op op, int weight) {
+  if (weight < 1 || weight > 100)
+    throw InvalidArgument(fmt::format("a size weight must be an integer in [1, 100], got {}", weight));
+  weight_[static_cast<std::size_t>(op)] = weight;
+}
+
+SizeWeights SizeWeights::parse(std::string_view text) {
+  SizeWeights w;
+  if (text == "default" || text.empty()) return w;
+  if (text == "turingbot") {
+    w.set(Op::div, 2);
+    return w;
+  }
+  for (std::string_view item : split(text, ',')) {
+    const auto eq = item.find('=');
+    const auto op = eq == std::string_view::npos ? std::nullopt : operator_named(item.substr(0, eq));
+    if (!op)
+      throw InvalidArgument(fmt::format(
+          "bad size weight '{}' (expected default, turingbot or a list like \"/=2,sqrt=3\")", item));
+    const double weight = io::parse_number(item.substr(eq + 1), "size weight");
+    if (weight != std::floor(weight))
+      throw InvalidArgument(fmt::format("size weight of '{}' must be an integer", item.substr(0, eq)));
+    w.set(*op, static_cast<int>(weight));
+  }
+  return w;
+}
+
+std::vector<Op> parse_operators(std::string_view text) {
+  std::vector<Op> ops;
+  for (std::string_view name : split(text, ',')) {
+    const auto op = operator_named(name);
+    if (!op || expr::arity(*op) == 0)
+      throw InvalidArgument(
+          fmt::format("unknown operator '{}' (expected some of: {})", name, kOperatorNames));
+    if (std::find(ops.begin(), ops.end(), *op) == ops.end()) ops.push_back(*op);
+  }
+  return ops;
+}
+
+Choice parse_choice(std::string_view name) {
+  if (name == "parsimonious") return Choice::parsimonious;
+  if (name == "knee") return Choice::knee;
+  if (name == "best") return Choice::best;
+  throw InvalidArgument(
+      fmt::format("unknown choice '{}' (expected parsimonious, knee or best)", name));
+}
+
+namespace {
+
+std::size_t knee(const std::vector<Candidate>& front, const auto& ranking_error) {
+  const auto log_error = [&](const Candidate& c) {
+    return std::log10(std::max(ranking_error(c), 1e-300));
+  };
+  const double x0 = front.front().size, x1 = front.back().size;
+  const double y0 = log_error(front.front()), y1 = log_error(front.back());
+  if (x1 <= x0 || y0 <= y1) return front.size() - 1;
+  std::size_t best = 0;
+  double deepest = 0;
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    const double x = (front[i].size - x0) / (x1 - x0), y = (log_error(front[i]) - y1) / (y0 - y1);
+    if (1 - x - y > deepest) {
+      deepest = 1 - x - y;
+      best = i;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice, double factor,
+                   double target_rms) {
+  if (front.empty()) throw InvalidArgument("cannot choose from an empty front");
+  const auto ranking_error = [metric](const Candidate& c) {
+    return to_loss(metric, c.test_error.value_or(c.train_error));
+  };
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < front.size(); ++i)
+    if (ranking_error(front[i]) < ranking_error(front[best])) best = i;
+  if (choice == Choice::best) return best;
+  if (choice == Choice::knee) return knee(front, ranking_error);
+  const double tolerance = std::max(factor * ranking_error(front[best]), 1e-10 * target_rms);
+  for (std::size_t i = 0; i < front.size(); ++i)
+    if (ranking_error(front[i]) <= tolerance) return i;
+  return best;
+}
+
+expr::Expression rounded(const expr::Expression& e, int digits) {
+  std::vector<expr::Node> nodes(e.nodes().begin(), e.nodes().end());
+  for (auto& n : nodes)
+    if (n.op == Op::constant) n.value = std::stod(fmt::format("{:.{}g}", n.value, digits));
+  return expr::Expression(std::move(nodes), e.variables());
+}
+
+}  // namespace specula::fit

@@ -1,0 +1,481 @@
+// The search: exhaustive enumeration of small forms, then genetic programming on islands with
+// Pareto (size, error) selection. Islands own their random streams and run in lockstep epochs;
+// the archive and migrations are updated between epochs in island order, so results do not
+// depend on how many threads ran the islands.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <numeric>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "constants.h"
+#include "genome.h"
+#include "specula/fit/fit.h"
+
+namespace specula::fit {
+
+using expr::Node;
+using expr::Op;
+
+namespace {
+
+struct Individual {
+  Genome genome;
+  std::string key;
+  double loss = INFINITY;
+  int size = 0;
+};
+
+bool better(const Individual& a, const Individual& b) {
+  return a.loss < b.loss || (a.loss == b.loss && a.size < b.size);
+}
+
+// The data split into the rows constants are fitted on and the rows held out.
+struct Problem {
+  std::vector<std::vector<double>> train_columns, test_columns;
+  std::vector<double> train_target, test_target;
+  Rows train;
+  Metric metric;
+  Constants constants;
+  SizeWeights weights;
+
+  Individual evaluate(Genome g) const {
+    const auto predicted = fit_constants(g, train, constants);
+    Individual out{std::move(g), {}, to_loss(metric, measure(metric, predicted, train_target)), 0};
+    if (std::isnan(out.loss)) out.loss = INFINITY;
+    out.key = canonical_key(out.genome);
+    out.size = weights.of(out.genome);
+    return out;
+  }
+};
+
+void validate(const Data& data, const Options& o) {
+  if (data.variables.empty()) throw InvalidArgument("no variables to fit with");
+  if (data.columns.size() != data.variables.size())
+    throw InvalidArgument("each variable needs one column of values");
+  if (data.target.empty()) throw InvalidArgument("no data rows");
+  for (std::size_t v = 0; v < data.columns.size(); ++v) {
+    if (data.columns[v].size() != data.target.size())
+      throw InvalidArgument(fmt::format("column '{}' has {} rows, the target {}", data.variables[v],
+                                        data.columns[v].size(), data.target.size()));
+    for (std::size_t r = 0; r < data.target.size(); ++r)
+      if (!std::isfinite(data.columns[v][r]))
+        throw InvalidArgument(fmt::format("column '{}' row {} is not a finite number",
+                                          data.variables[v], r + 1));
+  }
+  for (std::size_t r = 0; r < data.target.size(); ++r)
+    if (!std::isfinite(data.target[r]))
+      throw InvalidArgument(fmt::format("target row {} is not a finite number", r + 1));
+  if (o.max_size < 1) throw InvalidArgument("--max-size must be at least 1");
+  if (!(o.test_fraction >= 0 && o.test_fraction < 1))
+    throw InvalidArgument("the test fraction must be in [0, 1)");
+  if (!(o.time_limit_s > 0)) throw InvalidArgument("the time limit must be positive");
+  if (o.islands < 1 || o.population < 4)
+    throw InvalidArgument("need at least 1 island of at least 4 formulas");
+  if (o.threads < 0) throw InvalidArgument("threads must be 0 (all cores) or more");
+  if (o.target_error && !(*o.target_error >= 0))
+    throw InvalidArgument("the target error must be a number ≥ 0");
+}
+
+std::vector<std::size_t> test_rows(std::size_t rows, const Options& o) {
+  const auto count = static_cast<std::size_t>(std::ceil(o.test_fraction * static_cast<double>(rows)));
+  if (count == 0) return {};
+  if (count >= rows) throw InvalidArgument("the test fraction leaves no rows to train on");
+  std::vector<std::size_t> order(rows);
+  std::iota(order.begin(), order.end(), 0);
+  if (o.split == Split::random) std::shuffle(order.begin(), order.end(), Rng(o.seed ^ 0x5eed5eedULL));
+  std::vector<std::size_t> test(order.end() - static_cast<std::ptrdiff_t>(count), order.end());
+  std::sort(test.begin(), test.end());
+  return test;
+}
+
+Problem make_problem(const Data& data, const Options& o) {
+  Problem p{{}, {}, {}, {}, {}, o.metric, o.constants, o.weights};
+  const auto test = test_rows(data.target.size(), o);
+  std::vector<bool> held_out(data.target.size(), false);
+  for (auto r : test) held_out[r] = true;
+  p.train_columns.resize(data.columns.size());
+  p.test_columns.resize(data.columns.size());
+  for (std::size_t r = 0; r < data.target.size(); ++r) {
+    for (std::size_t v = 0; v < data.columns.size(); ++v)
+      (held_out[r] ? p.test_columns : p.train_columns)[v].push_back(data.columns[v][r]);
+    (held_out[r] ? p.test_target : p.train_target).push_back(data.target[r]);
+  }
+  for (const auto& c : p.train_columns) p.train.columns.emplace_back(c);
+  p.train.target = p.train_target;
+  if (o.metric == Metric::mean_relative)
+    for (double y : p.train_target) p.train.weights.push_back(y != 0 ? 1 / (y * y) : 1.0);
+  return p;
+}
+
+// The best formula found of each size.
+class Archive {
+ public:
+  // Returns whether the archive changed.
+  bool offer(const Individual& x) {
+    if (!std::isfinite(x.loss)) return false;
+    auto [it, inserted] = best_.try_emplace(x.size, x);
+    if (!inserted && x.loss < it->second.loss) it->second = x;
+    return inserted || it->second.key == x.key;
+  }
+  // Each size's best that beats every smaller one.
+  std::vector<const Individual*> front() const {
+    std::vector<const Individual*> out;
+    for (const auto& [size, x] : best_)
+      if (out.empty() || x.loss < out.back()->loss * (1 - 1e-9) - 1e-300) out.push_back(&x);
+    return out;
+  }
+
+ private:
+  std::map<int, Individual> best_;
+};
+
+// Exhaustive enumeration: every distinct form (canonical key) of each size, smallest first,
+// until the size or count limit. Constants start at 1.
+std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
+  std::vector<std::vector<Genome>> by_size(static_cast<std::size_t>(o.enumerate_max_size) + 1);
+  std::vector<Genome> all;
+  std::unordered_map<std::string, bool> seen;
+  const auto limit = static_cast<std::size_t>(o.enumerate_limit);
+  const auto add = [&](Genome g, int size) {
+    if (all.size() >= limit || !seen.try_emplace(canonical_key(g), true).second) return;
+    by_size[static_cast<std::size_t>(size)].push_back(g);
+    all.push_back(std::move(g));
+  };
+  const auto join = [](const Genome& x, const Genome* y, Op op) {
+    Genome g = x;
+    if (y) g.insert(g.end(), y->begin(), y->end());
+    g.push_back({op, 0, 0});
+    return g;
+  };
+  for (int size = 1; size <= std::min(o.enumerate_max_size, o.max_size) && all.size() < limit; ++size) {
+    if (size == a.weights.of(Op::variable))
+      for (std::uint32_t v = 0; v < a.variables; ++v) add({{Op::variable, v, 0}}, size);
+    if (size == a.weights.of(Op::constant) && a.constants != Constants::none)
+      add({{Op::constant, 0, 1.0}}, size);
+    for (Op op : a.unary) {
+      const int rest = size - a.weights.of(op);
+      if (rest >= 1)
+        for (const auto& x : by_size[static_cast<std::size_t>(rest)]) add(join(x, nullptr, op), size);
+    }
+    for (Op op : a.binary)
+      for (int left = 1; left < size - a.weights.of(op); ++left) {
+        const int right = size - a.weights.of(op) - left;
+        for (const auto& x : by_size[static_cast<std::size_t>(left)])
+          for (const auto& y : by_size[static_cast<std::size_t>(right)]) add(join(x, &y, op), size);
+      }
+  }
+  return all;
+}
+
+// Fits an enumerated form from two starting points for its nonlinear constants.
+Individual fit_form(const Problem& p, const Genome& form) {
+  Individual best = p.evaluate(form);
+  if (!linear_constants(form).empty()) {
+    Genome other = form;
+    for (auto& n : other)
+      if (n.op == Op::constant) n.value = -0.5;
+    Individual second = p.evaluate(other);
+    if (better(second, best)) best = std::move(second);
+  }
+  return best;
+}
+
+// Pareto rank by (loss, size): 0 for the non-dominated, 1 for the next layer, and so on.
+std::vector<int> pareto_ranks(const std::vector<Individual>& xs) {
+  std::vector<std::size_t> order(xs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto i, auto j) {
+    return xs[i].size < xs[j].size || (xs[i].size == xs[j].size && xs[i].loss < xs[j].loss);
+  });
+  std::vector<int> rank(xs.size(), -1);
+  std::vector<double> best_loss;  // best_loss[r]: lowest loss seen so far in layer r
+  for (std::size_t i : order) {
+    int r = 0;
+    while (r < static_cast<int>(best_loss.size()) && !(xs[i].loss < best_loss[static_cast<std::size_t>(r)])) ++r;
+    if (r == static_cast<int>(best_loss.size())) best_loss.push_back(INFINITY);
+    best_loss[static_cast<std::size_t>(r)] = xs[i].loss;
+    rank[i] = r;
+  }
+  return rank;
+}
+
+class Island {
+ public:
+  Island(const Problem& p, const Alphabet& a, const Options& o, std::uint64_t stream)
+      : problem_(p), alphabet_(a), options_(o), rng_(o.seed * 0x9E3779B97F4A7C15ULL + stream) {}
+
+  void populate(const std::vector<Individual>& seeds) {
+    for (const auto& s : seeds) admit(s);
+    while (population_.size() < static_cast<std::size_t>(options_.population)) {
+      const int size = std::uniform_int_distribution<int>(1, std::min(alphabet_.max_size, 15))(rng_);
+      admit(evaluate(alphabet_.random_tree(rng_, size)));
+    }
+    select();
+  }
+
+  void generation() {
+    const std::size_t n = population_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      Genome child = std::uniform_real_distribution<double>(0, 1)(rng_) < 0.5
+                         ? crossover(tournament().genome, tournament().genome, alphabet_, rng_)
+                         : mutate(tournament().genome, alphabet_, rng_);
+      admit(evaluate(std::move(child)));
+    }
+    select();
+  }
+
+  const std::vector<Individual>& population() const { return population_; }
+  std::int64_t evaluations() const { return evaluations_; }
+
+  // The best few, for the next island.
+  std::vector<Individual> emigrants(std::size_t count) const {
+    std::vector<Individual> sorted = population_;
+    std::sort(sorted.begin(), sorted.end(), better);
+    sorted.resize(std::min(count, sorted.size()));
+    return sorted;
+  }
+  void immigrate(const std::vector<Individual>& xs) {
+    for (const auto& x : xs) admit(x);
+    select();
+  }
+
+ private:
+  Individual evaluate(Genome g) {
+    const std::string key = canonical_key(g);
+    if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
+    ++evaluations_;
+    Individual x = problem_.evaluate(std::move(g));
+    if (cache_.size() > 200000) cache_.clear();
+    cache_.emplace(key, x);
+    return x;
+  }
+
+  void admit(Individual x) {
+    if (present_.insert(x.key).second) population_.push_back(std::move(x));
+  }
+
+  const Individual& tournament() {
+    std::uniform_int_distribution<std::size_t> any(0, population_.size() - 1);
+    const std::size_t a = any(rng_), b = any(rng_);
+    return rank_[a] < rank_[b] || (rank_[a] == rank_[b] && better(population_[a], population_[b]))
+               ? population_[a]
+               : population_[b];
+  }
+
+  // Keeps the best `population` formulas by Pareto rank, then error.
+  void select() {
+    const auto ranks = pareto_ranks(population_);
+    std::vector<std::size_t> order(population_.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) {
+      return ranks[i] < ranks[j] || (ranks[i] == ranks[j] && better(population_[i], population_[j]));
+    });
+    order.resize(std::min(order.size(), static_cast<std::size_t>(options_.population)));
+    std::vector<Individual> kept;
+    rank_.clear();
+    present_.clear();
+    for (auto i : order) {
+      rank_.push_back(ranks[i]);
+      present_.insert(population_[i].key);
+      kept.push_back(std::move(population_[i]));
+    }
+    population_ = std::move(kept);
+  }
+
+  const Problem& problem_;
+  const Alphabet& alphabet_;
+  const Options& options_;
+  Rng rng_;
+  std::vector<Individual> population_;
+  std::vector<int> rank_;
+  std::unordered_set<std::string> present_;
+  std::unordered_map<std::string, Individual> cache_;
+  std::int64_t evaluations_ = 0;
+};
+
+constexpr int kEpochGenerations = 5;
+constexpr std::size_t kMigrants = 5;
+constexpr std::size_t kEnumerationChunk = 512;
+
+class Clock {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+Candidate candidate(const Individual& x, const Problem& p, const Data& data) {
+  Candidate c{expr::Expression(x.genome, data.variables), x.size,
+              p.metric == Metric::r2 ? 1 - x.loss : x.loss, std::nullopt};
+  if (!p.test_target.empty()) {
+    std::vector<std::span<const double>> columns(p.test_columns.begin(), p.test_columns.end());
+    std::vector<double> predicted(p.test_target.size());
+    expr::evaluate_batch(c.formula, columns, predicted);
+    c.test_error = measure(p.metric, predicted, p.test_target);
+  }
+  return c;
+}
+
+// Seeds for island i: the enumeration's Pareto layers dealt out round-robin, best first.
+std::vector<Individual> seeds_for(const std::vector<Individual>& fitted, std::size_t island,
+                                  std::size_t islands, std::size_t count) {
+  std::vector<Individual> finite;
+  for (const auto& x : fitted)
+    if (std::isfinite(x.loss)) finite.push_back(x);
+  const auto ranks = pareto_ranks(finite);
+  std::vector<std::size_t> order(finite.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) {
+    return ranks[i] < ranks[j] || (ranks[i] == ranks[j] && better(finite[i], finite[j]));
+  });
+  std::vector<Individual> out;
+  for (std::size_t k = island; k < order.size() && out.size() < count; k += islands)
+    out.push_back(finite[order[k]]);
+  return out;
+}
+
+class Search {
+ public:
+  Search(const Data& data, const Options& o, const std::function<void(const Progress&)>& progress)
+      : data_(data),
+        options_(o),
+        progress_(progress),
+        problem_(make_problem(data, o)),
+        alphabet_(o, static_cast<std::uint32_t>(data.variables.size())),
+        arena_(o.threads > 0 ? o.threads : oneapi::tbb::task_arena::automatic) {}
+
+  Result run() {
+    const auto fitted = enumerate();
+    if (options_.max_generations == 0) stopped_by_ = "generations";
+    if (!stopped()) evolve(fitted);
+    Result result;
+    for (const Individual* x : archive_.front()) result.front.push_back(candidate(*x, problem_, data_));
+    if (result.front.empty()) throw InvalidArgument("no formula could be evaluated on these data");
+    double mean_square = 0;
+    for (double y : data_.target) mean_square += y * y / static_cast<double>(data_.target.size());
+    result.chosen = choose(result.front, options_.metric, options_.choice, options_.choose_factor,
+                           std::sqrt(mean_square));
+    result.evaluations = evaluations_;
+    result.generations = generations_;
+    result.seconds = clock_.seconds();
+    result.stopped_by = stopped_by_;
+    return result;
+  }
+
+ private:
+  std::vector<Individual> enumerate() {
+    const auto forms = enumerate_forms(alphabet_, options_);
+    std::vector<Individual> fitted(forms.size());
+    for (std::size_t first = 0; first < forms.size() && !stopped(); first += kEnumerationChunk) {
+      const std::size_t last = std::min(forms.size(), first + kEnumerationChunk);
+      arena_.execute([&] {
+        oneapi::tbb::parallel_for(first, last,
+                                  [&](std::size_t i) { fitted[i] = fit_form(problem_, forms[i]); });
+      });
+      for (std::size_t i = first; i < last; ++i) archive_.offer(fitted[i]);
+      evaluations_ += static_cast<std::int64_t>(last - first);
+      check_budget(false);
+    }
+    report();
+    return fitted;
+  }
+
+  void evolve(const std::vector<Individual>& fitted) {
+    const auto count = static_cast<std::size_t>(options_.islands);
+    std::vector<Island> islands;
+    for (std::size_t i = 0; i < count; ++i) islands.emplace_back(problem_, alphabet_, options_, i + 1);
+    const std::int64_t enumerated = evaluations_;
+    const auto seed_count = static_cast<std::size_t>(options_.population) / 2;
+    in_parallel(islands, [&](Island& island, std::size_t i) {
+      island.populate(seeds_for(fitted, i, count, seed_count));
+    });
+    while (!stopped()) {
+      const int epoch = options_.max_generations
+                            ? static_cast<int>(std::min<std::int64_t>(
+                                  kEpochGenerations, *options_.max_generations - generations_))
+                            : kEpochGenerations;
+      in_parallel(islands, [&](Island& island, std::size_t) {
+        for (int g = 0; g < epoch; ++g) island.generation();
+      });
+      generations_ += epoch;
+      evaluations_ = enumerated;
+      for (const auto& island : islands) {
+        evaluations_ += island.evaluations();
+        for (const auto& x : island.population()) archive_.offer(x);
+      }
+      migrate(islands);
+      check_budget(true);
+      report();
+    }
+  }
+
+  void in_parallel(std::vector<Island>& islands, const auto& work) {
+    arena_.execute([&] {
+      oneapi::tbb::parallel_for(std::size_t{0}, islands.size(),
+                                [&](std::size_t i) { work(islands[i], i); });
+    });
+  }
+
+  static void migrate(std::vector<Island>& islands) {
+    if (islands.size() < 2) return;
+    std::vector<std::vector<Individual>> leaving;
+    for (const auto& island : islands) leaving.push_back(island.emigrants(kMigrants));
+    for (std::size_t i = 0; i < islands.size(); ++i)
+      islands[i].immigrate(leaving[(i + islands.size() - 1) % islands.size()]);
+  }
+
+  // The generation budget applies to the genetic search only.
+  void check_budget(bool evolving) {
+    const auto front = archive_.front();
+    if (options_.target_error && !front.empty() &&
+        front.back()->loss <= to_loss(options_.metric, *options_.target_error))
+      stopped_by_ = "target error";
+    else if (options_.max_evaluations && evaluations_ >= *options_.max_evaluations)
+      stopped_by_ = "evaluations";
+    else if (options_.max_generations && generations_ >= *options_.max_generations && evolving)
+      stopped_by_ = "generations";
+    else if (clock_.seconds() >= options_.time_limit_s)
+      stopped_by_ = "time";
+  }
+
+  bool stopped() const { return !stopped_by_.empty(); }
+
+  void report() {
+    if (!progress_) return;
+    std::vector<Candidate> front;
+    for (const Individual* x : archive_.front()) front.push_back(candidate(*x, problem_, data_));
+    const double elapsed = clock_.seconds();
+    progress_(Progress{elapsed, std::max(0.0, options_.time_limit_s - elapsed), evaluations_,
+                       generations_, &front});
+  }
+
+  const Data& data_;
+  const Options& options_;
+  const std::function<void(const Progress&)>& progress_;
+  const Problem problem_;
+  const Alphabet alphabet_;
+  oneapi::tbb::task_arena arena_;
+  Clock clock_;
+  Archive archive_;
+  std::int64_t evaluations_ = 0, generations_ = 0;
+  std::string stopped_by_;
+};
+
+}  // namespace
+
+Result search(const Data& data, const Options& options,
+              const std::function<void(const Progress&)>& on_progress) {
+  validate(data, options);
+  return Search(data, options, on_progress).run();
+}
+
+}  // namespace specula::fit
