@@ -139,13 +139,16 @@ class ProgressPrinter {
  public:
   explicit ProgressPrinter(fit::Metric metric) : metric_(metric) {}
   void operator()(const fit::Progress& p) {
-    std::string front;
-    for (const auto& c : *p.front) front += fmt::format("{:>4}  {:<12.6g}  {}\n", c.size, c.train_error, shown(c.formula));
+    std::string front, sizes_and_errors;
+    for (const auto& c : *p.front) {
+      front += fmt::format("{:>4}  {:<12.6g}  {}\n", c.size, c.train_error, shown(c.formula));
+      sizes_and_errors += fmt::format("{} {:.3g} ", c.size, c.train_error);
+    }
     std::string out = "\r\033[K";
-    if (front != last_front_)
+    if (sizes_and_errors != last_front_)
       out += fmt::format("front after {} evaluations ({:.1f} s), {}:\n{}", p.evaluations,
                          p.elapsed_s, fit::metric_name(metric_), front);
-    last_front_ = front;
+    last_front_ = sizes_and_errors;
     out += fmt::format("{:.1f} s, {:.0f} s left · {} evaluations, {:.0f}/s · generation {}",
                        p.elapsed_s, p.time_left_s, p.evaluations,
                        static_cast<double>(p.evaluations) / std::max(p.elapsed_s, 1e-9), p.generations);

@@ -230,149 +230,164 @@ bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 
+// Buffers reused from fit to fit on each thread: fitting allocates nothing once they are warm.
+struct Workspace {
+  std::vector<double> sqrt_w, value, gradient, saved_value, saved_gradient, saved_constants;
+  MatrixXd G, J, A;
+  VectorXd b, s, r, g, step;
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> least_squares;
+  Eigen::HouseholderQR<MatrixXd> qr;
+  MatrixXd Q;
+  Eigen::LDLT<MatrixXd> ldlt;
+};
+
 // Variable projection over the constants of one genome.
 class Projection {
  public:
-  Projection(Genome& g, const Rows& rows) : g_(g), rows_(rows) {
+  Projection(Genome& g, const Rows& rows, Workspace& w) : g_(g), rows_(rows), w_(w) {
     for (std::size_t i = 0; i < g.size(); ++i)
       if (g[i].op == Op::constant) constant_nodes_.push_back(i);
     const auto linear = linear_constants(g);
     for (std::size_t k = 0; k < linear.size(); ++k) (linear[k] ? linear_ : nonlinear_).push_back(k);
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      sqrt_w_.push_back(rows.weights.empty() ? 1.0 : std::sqrt(rows.weights[r]));
+    w_.sqrt_w.assign(rows.size(), 1.0);
+    for (std::size_t r = 0; r < rows.weights.size(); ++r) w_.sqrt_w[r] = std::sqrt(rows.weights[r]);
   }
 
   std::size_t nonlinear_count() const { return nonlinear_.size(); }
+  std::size_t constant_count() const { return constant_nodes_.size(); }
   double& constant(std::size_t k) { return g_[constant_nodes_[k]].value; }
+  const std::vector<double>& value() const { return w_.value; }
+  void evaluate() { evaluate_with_gradient(g_, rows_, w_.value, w_.gradient); }
 
   // Solves the linear constants for the current nonlinear ones; returns the weighted squared
-  // error (inf if the formula is undefined on the rows) and leaves value_/gradient_ current.
+  // error (inf if the formula is undefined on the rows).
   double solve_linear() {
-    evaluate_with_gradient(g_, rows_, value_, gradient_);
-    if (!all_finite(value_) || !all_finite(gradient_)) return INFINITY;
-    const std::size_t n = rows_.size();
+    evaluate();
+    if (!all_finite(w_.value) || !all_finite(w_.gradient)) return INFINITY;
     if (!linear_.empty()) {
-      MatrixXd G(n, linear_.size());
-      VectorXd b(n);
+      const std::size_t n = rows_.size();
+      fill_columns(w_.G, linear_);
+      w_.b.resize(static_cast<Eigen::Index>(n));
       for (std::size_t r = 0; r < n; ++r) {
-        double f0 = value_[r];
-        for (std::size_t j = 0; j < linear_.size(); ++j) {
-          const double gj = gradient_[linear_[j] * n + r];
-          f0 -= gj * constant(linear_[j]);
-          G(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) = sqrt_w_[r] * gj;
-        }
-        b(static_cast<Eigen::Index>(r)) = sqrt_w_[r] * (rows_.target[r] - f0);
+        double f0 = w_.value[r];
+        for (std::size_t k : linear_) f0 -= gradient(k, r) * constant(k);
+        w_.b(static_cast<Eigen::Index>(r)) = w_.sqrt_w[r] * (rows_.target[r] - f0);
       }
-      const VectorXd s = G.completeOrthogonalDecomposition().solve(b);
-      if (!s.allFinite()) return INFINITY;
-      // The formula is affine in s: its new values follow without evaluating it again. The
-      // derivatives by the nonlinear constants keep their values at the old s (Kaufman).
+      w_.least_squares.compute(w_.G);
+      w_.s = w_.least_squares.solve(w_.b);
+      if (!w_.s.allFinite()) return INFINITY;
+      // The formula is affine in s: its new values follow without evaluating it again.
       for (std::size_t j = 0; j < linear_.size(); ++j) {
-        const double change = s(static_cast<Eigen::Index>(j)) - constant(linear_[j]);
-        for (std::size_t r = 0; r < n; ++r) value_[r] += change * gradient_[linear_[j] * n + r];
-        constant(linear_[j]) = s(static_cast<Eigen::Index>(j));
+        const double change = w_.s(static_cast<Eigen::Index>(j)) - constant(linear_[j]);
+        for (std::size_t r = 0; r < n; ++r) w_.value[r] += change * gradient(linear_[j], r);
+        constant(linear_[j]) = w_.s(static_cast<Eigen::Index>(j));
       }
     }
     return squared_error();
   }
 
+  // The damped Gauss-Newton step for the nonlinear constants, on the projected problem: the
+  // Jacobian by the nonlinear constants loses its part in the span of the linear constants'
+  // columns (Kaufman 1975), since the least-squares solve absorbs that part.
+  const VectorXd& step(double lambda) {
+    fill_columns(w_.J, nonlinear_);
+    if (!linear_.empty()) {
+      fill_columns(w_.G, linear_);
+      w_.qr.compute(w_.G);
+      w_.Q = w_.qr.householderQ() * MatrixXd::Identity(w_.G.rows(), w_.G.cols());
+      w_.J -= w_.Q * (w_.Q.transpose() * w_.J);
+    }
+    w_.r.resize(static_cast<Eigen::Index>(rows_.size()));
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      w_.r(static_cast<Eigen::Index>(i)) = w_.sqrt_w[i] * (rows_.target[i] - w_.value[i]);
+    w_.A.noalias() = w_.J.transpose() * w_.J;
+    w_.g.noalias() = w_.J.transpose() * w_.r;
+    for (Eigen::Index i = 0; i < w_.A.rows(); ++i) w_.A(i, i) += lambda * std::max(w_.A(i, i), 1e-12);
+    w_.ldlt.compute(w_.A);
+    w_.step = w_.ldlt.solve(w_.g);
+    return w_.step;
+  }
+
+  void move_nonlinear(const VectorXd& step) {
+    for (std::size_t j = 0; j < nonlinear_.size(); ++j)
+      constant(nonlinear_[j]) += step(static_cast<Eigen::Index>(j));
+  }
+
+  void save() {
+    w_.saved_constants.clear();
+    for (std::size_t k = 0; k < constant_count(); ++k) w_.saved_constants.push_back(constant(k));
+    w_.saved_value = w_.value;
+    w_.saved_gradient = w_.gradient;
+  }
+  void restore() {
+    for (std::size_t k = 0; k < constant_count(); ++k) constant(k) = w_.saved_constants[k];
+    std::swap(w_.value, w_.saved_value);
+    std::swap(w_.gradient, w_.saved_gradient);
+  }
+
+  void round_constants() {
+    for (std::size_t k = 0; k < constant_count(); ++k) constant(k) = std::round(constant(k));
+  }
+
+ private:
+  double gradient(std::size_t k, std::size_t r) const { return w_.gradient[k * rows_.size() + r]; }
+
+  // M's columns: the weighted derivatives by the constants `which`.
+  void fill_columns(MatrixXd& M, const std::vector<std::size_t>& which) const {
+    M.resize(static_cast<Eigen::Index>(rows_.size()), static_cast<Eigen::Index>(which.size()));
+    for (std::size_t j = 0; j < which.size(); ++j)
+      for (std::size_t r = 0; r < rows_.size(); ++r)
+        M(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j)) = w_.sqrt_w[r] * gradient(which[j], r);
+  }
+
   double squared_error() const {
     double sum = 0;
     for (std::size_t r = 0; r < rows_.size(); ++r) {
-      const double e = sqrt_w_[r] * (rows_.target[r] - value_[r]);
+      const double e = w_.sqrt_w[r] * (rows_.target[r] - w_.value[r]);
       sum += e * e;
     }
     return sum;
   }
 
-  // The Gauss-Newton system (JᵀJ, Jᵀr) over the nonlinear constants at the current point.
-  std::pair<MatrixXd, VectorXd> normal_equations() const {
-    const std::size_t n = rows_.size(), m = nonlinear_.size();
-    MatrixXd J(n, m);
-    VectorXd r(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      r(static_cast<Eigen::Index>(i)) = sqrt_w_[i] * (rows_.target[i] - value_[i]);
-      for (std::size_t j = 0; j < m; ++j)
-        J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-            sqrt_w_[i] * gradient_[nonlinear_[j] * n + i];
-    }
-    return {J.transpose() * J, J.transpose() * r};
-  }
-
-  std::vector<double> nonlinear_values() {
-    std::vector<double> v;
-    for (std::size_t k : nonlinear_) v.push_back(constant(k));
-    return v;
-  }
-  void set_nonlinear(const std::vector<double>& v) {
-    for (std::size_t j = 0; j < nonlinear_.size(); ++j) constant(nonlinear_[j]) = v[j];
-  }
-  std::vector<double> all_values() {
-    std::vector<double> v;
-    for (std::size_t k = 0; k < constant_nodes_.size(); ++k) v.push_back(constant(k));
-    return v;
-  }
-  void set_all(const std::vector<double>& v) {
-    for (std::size_t k = 0; k < v.size(); ++k) constant(k) = v[k];
-  }
-  const std::vector<double>& value() const { return value_; }
-  void evaluate() { evaluate_with_gradient(g_, rows_, value_, gradient_); }
-  struct State {
-    std::vector<double> constants, value, gradient;
-  };
-  State state() { return {all_values(), value_, gradient_}; }
-  void restore(State s) {
-    set_all(s.constants);
-    value_ = std::move(s.value);
-    gradient_ = std::move(s.gradient);
-  }
-  std::size_t constant_count() const { return constant_nodes_.size(); }
-
- private:
   Genome& g_;
   const Rows& rows_;
+  Workspace& w_;
   std::vector<std::size_t> constant_nodes_, linear_, nonlinear_;
-  std::vector<double> sqrt_w_, value_, gradient_;
 };
 
 constexpr int kMaxIterations = 30;
 
 // Levenberg–Marquardt on the nonlinear constants, each step re-solving the linear ones.
-double levenberg_marquardt(Projection& p, double cost) {
+void levenberg_marquardt(Projection& p, double cost) {
   double lambda = 1e-3;
   for (int iteration = 0; iteration < kMaxIterations && lambda < 1e12; ++iteration) {
-    auto [A, g] = p.normal_equations();
-    auto saved = p.state();
-    for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += lambda * std::max(A(i, i), 1e-12);
-    const VectorXd step = A.ldlt().solve(g);
+    const VectorXd& step = p.step(lambda);
     if (!step.allFinite()) break;
-    auto theta = p.nonlinear_values();
-    for (std::size_t j = 0; j < theta.size(); ++j) theta[j] += step(static_cast<Eigen::Index>(j));
-    p.set_nonlinear(theta);
+    p.save();
+    p.move_nonlinear(step);
     const double trial = p.solve_linear();
     if (trial < cost) {
       const bool converged = cost - trial <= 1e-13 * cost;
       cost = trial;
+      p.evaluate();  // derivatives at the new linear constants
       lambda *= 0.3;
       if (converged) break;
     } else {
-      p.restore(std::move(saved));
+      p.restore();
       lambda *= 10;
     }
   }
-  return cost;
 }
 
 }  // namespace
 
 std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode) {
-  Projection p(g, rows);
-  double cost = p.solve_linear();
+  thread_local Workspace workspace;
+  Projection p(g, rows, workspace);
+  const double cost = p.solve_linear();
   if (std::isfinite(cost) && p.nonlinear_count() > 0) levenberg_marquardt(p, cost);
   if (mode == Constants::integer && p.constant_count() > 0) {
-    auto values = p.all_values();
-    for (double& v : values) v = std::round(v);
-    p.set_all(values);
+    p.round_constants();
     p.evaluate();
   }
   return p.value();

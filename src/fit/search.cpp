@@ -9,6 +9,7 @@
 #include <map>
 #include <numeric>
 #include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>
 #include <unordered_map>
 #include <unordered_set>
@@ -116,24 +117,34 @@ Problem make_problem(const Data& data, const Options& o) {
 // The best formula found of each size.
 class Archive {
  public:
-  // Returns whether the archive changed.
-  bool offer(const Individual& x) {
-    if (!std::isfinite(x.loss)) return false;
+  // Differences in loss below `noise` are rounding, not improvement.
+  explicit Archive(double noise) : noise_(noise) {}
+
+  void offer(const Individual& x) {
+    if (!std::isfinite(x.loss)) return;
     auto [it, inserted] = best_.try_emplace(x.size, x);
     if (!inserted && x.loss < it->second.loss) it->second = x;
-    return inserted || it->second.key == x.key;
   }
-  // Each size's best that beats every smaller one.
+  // Each size's best that beats every smaller one by more than rounding.
   std::vector<const Individual*> front() const {
     std::vector<const Individual*> out;
     for (const auto& [size, x] : best_)
-      if (out.empty() || x.loss < out.back()->loss * (1 - 1e-9) - 1e-300) out.push_back(&x);
+      if (out.empty() || x.loss < out.back()->loss * (1 - 1e-9) - noise_) out.push_back(&x);
     return out;
   }
 
  private:
+  double noise_;
   std::map<int, Individual> best_;
 };
+
+// The loss that double rounding alone can make: 1e-13 of the target's scale.
+double rounding_noise(const Problem& p) {
+  if (p.metric == Metric::mean_relative || p.metric == Metric::r2) return 1e-13;
+  double mean_square = 0;
+  for (double y : p.train_target) mean_square += y * y / static_cast<double>(p.train_target.size());
+  return 1e-13 * std::sqrt(mean_square);
+}
 
 // Exhaustive enumeration: every distinct form (canonical key) of each size, smallest first,
 // until the size or count limit. Constants start at 1.
@@ -173,10 +184,11 @@ std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
   return all;
 }
 
-// Fits an enumerated form from two starting points for its nonlinear constants.
+// Fits an enumerated form from two starting points when it has nonlinear constants.
 Individual fit_form(const Problem& p, const Genome& form) {
   Individual best = p.evaluate(form);
-  if (!linear_constants(form).empty()) {
+  const auto linear = linear_constants(form);
+  if (std::find(linear.begin(), linear.end(), false) != linear.end()) {
     Genome other = form;
     for (auto& n : other)
       if (n.op == Op::constant) n.value = -0.5;
@@ -220,13 +232,18 @@ class Island {
   }
 
   void generation() {
-    const std::size_t n = population_.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      Genome child = std::uniform_real_distribution<double>(0, 1)(rng_) < 0.5
-                         ? crossover(tournament().genome, tournament().genome, alphabet_, rng_)
-                         : mutate(tournament().genome, alphabet_, rng_);
-      admit(evaluate(std::move(child)));
+    std::vector<Individual> children;
+    for (std::size_t i = 0; i < population_.size(); ++i) {
+      Genome child;
+      if (std::uniform_real_distribution<double>(0, 1)(rng_) < 0.5) {
+        const Genome& mother = tournament().genome;
+        child = crossover(mother, tournament().genome, alphabet_, rng_);
+      } else {
+        child = mutate(tournament().genome, alphabet_, rng_);
+      }
+      children.push_back(evaluate(std::move(child)));
     }
+    for (auto& child : children) admit(std::move(child));
     select();
   }
 
@@ -351,7 +368,8 @@ class Search {
         progress_(progress),
         problem_(make_problem(data, o)),
         alphabet_(o, static_cast<std::uint32_t>(data.variables.size())),
-        arena_(o.threads > 0 ? o.threads : oneapi::tbb::task_arena::automatic) {}
+        arena_(std::min(o.threads > 0 ? o.threads : 1 << 20, oneapi::tbb::info::default_concurrency())),
+        archive_(rounding_noise(problem_)) {}
 
   Result run() {
     const auto fitted = enumerate();

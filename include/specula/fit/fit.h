@@ -80,7 +80,7 @@ struct Options {
   int threads = 0;                     // 0: all cores
   int islands = 4;
   int population = 200;        // per island
-  int enumerate_max_size = 9;  // exhaustive up to this size …
+  int enumerate_max_size = 11;  // exhaustive up to this size …
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;

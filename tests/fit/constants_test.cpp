@@ -1,0 +1,147 @@
+// Constant fitting: forward-mode derivatives, which constants enter linearly, and the fit.
+#include "fit/constants.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+
+#include "expr/random_expression.h"
+
+namespace specula::fit {
+namespace {
+
+Genome nodes_of(std::string_view text) {
+  const auto e = expr::parse(text, {"x", "y"});
+  return {e.nodes().begin(), e.nodes().end()};
+}
+
+struct Columns {
+  std::vector<double> x, y, target;
+  Rows rows() const { return {{x, y}, target, {}}; }
+};
+
+Columns grid(std::size_t n) {
+  Columns c;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.x.push_back(0.5 + 1.5 * static_cast<double>(i) / static_cast<double>(n - 1));
+    c.y.push_back(2.0 - 1.3 * static_cast<double>(i % 7) / 6.0);
+  }
+  c.target.assign(n, 0);
+  return c;
+}
+
+// Values agree bit for bit with expr's evaluator (both nan where the formula is undefined);
+// 300 rows span more than one chunk.
+RC_GTEST_PROP(EvaluateWithGradient, ValuesMatchTheExpressionEvaluator, ()) {
+  const auto e = *expr::testing::random_expression();
+  const Columns c = grid(300);
+  std::vector<double> value, gradient, expected(c.x.size());
+  evaluate_with_gradient(e.nodes(), c.rows(), value, gradient);
+  const std::vector<std::span<const double>> columns{c.x, c.y};
+  expr::evaluate_batch(e, columns, expected);
+  for (std::size_t r = 0; r < expected.size(); ++r) {
+    if (std::isnan(expected[r]))
+      RC_ASSERT(std::isnan(value[r]));
+    else
+      RC_ASSERT(value[r] == expected[r]);
+  }
+}
+
+// Derivatives by each constant against central differences, on smooth formulas.
+TEST(EvaluateWithGradient, DerivativesMatchCentralDifferences) {
+  const Columns c = grid(40);
+  for (const char* text :
+       {"2.5*x + 0.75/(x + 0.5)", "exp(0.3*x) * sin(1.7*y)", "pow(x, 1.5) + log(2*y)",
+        "sqrt(x*3) - acos(y*0.2)", "log2(x + 4)*cos(0.5 - y)", "-(x*0.7)/(y - 3.5)",
+        "pow(1.3, x*y) * 2"}) {
+    SCOPED_TRACE(text);
+    Genome g = nodes_of(text);
+    std::vector<double> value, gradient, plus, minus, unused;
+    evaluate_with_gradient(g, c.rows(), value, gradient);
+    std::size_t k = 0;
+    for (auto& node : g) {
+      if (node.op != expr::Op::constant) continue;
+      const double h = 1e-6 * std::max(1.0, std::abs(node.value)), saved = node.value;
+      node.value = saved + h;
+      evaluate_with_gradient(g, c.rows(), plus, unused);
+      node.value = saved - h;
+      evaluate_with_gradient(g, c.rows(), minus, unused);
+      node.value = saved;
+      for (std::size_t r = 0; r < value.size(); ++r) {
+        const double numeric = (plus[r] - minus[r]) / (2 * h);
+        EXPECT_NEAR(gradient[k * value.size() + r], numeric, 1e-6 * std::max(1.0, std::abs(numeric)))
+            << "constant " << k << " row " << r;
+      }
+      ++k;
+    }
+  }
+}
+
+TEST(LinearConstants, AreTheOnesTheFormulaIsJointlyAffineIn) {
+  EXPECT_EQ(linear_constants(nodes_of("2*x + 3")), (std::vector<bool>{true, true}));
+  EXPECT_EQ(linear_constants(nodes_of("2*(x + 3)")), (std::vector<bool>{true, false}));
+  EXPECT_EQ(linear_constants(nodes_of("0.75/(x + 0.5)")), (std::vector<bool>{true, false}));
+  EXPECT_EQ(linear_constants(nodes_of("x/3")), (std::vector<bool>{false}));
+  EXPECT_EQ(linear_constants(nodes_of("exp(2*x) + 1")), (std::vector<bool>{false, true}));
+  EXPECT_EQ(linear_constants(nodes_of("-(2*x) - y*4")), (std::vector<bool>{true, true}));
+  EXPECT_EQ(linear_constants(nodes_of("2*3*x")), (std::vector<bool>{true, false}));
+}
+
+Columns sampled(const char* truth, std::size_t n) {
+  Columns c = grid(n);
+  const auto e = expr::parse(truth, {"x", "y"});
+  const std::vector<std::span<const double>> columns{c.x, c.y};
+  expr::evaluate_batch(e, columns, c.target);
+  return c;
+}
+
+TEST(FitConstants, RecoversLinearAndNonlinearConstants) {
+  const Columns c = sampled("2.5*x + 0.75/(x + 0.5)", 40);
+  Genome g = nodes_of("1*x + 1/(x + 1)");
+  const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_NEAR(g[0].value, 2.5, 1e-10);
+  EXPECT_NEAR(g[3].value, 0.75, 1e-10);
+  EXPECT_NEAR(g[5].value, 0.5, 1e-10);
+  for (std::size_t r = 0; r < predicted.size(); ++r) EXPECT_NEAR(predicted[r], c.target[r], 1e-12);
+}
+
+TEST(FitConstants, SolvesPurelyLinearFormulasExactly) {
+  const Columns c = sampled("-1.25*x*y + 0.5*y + 7", 30);
+  Genome g = nodes_of("9*x*y + 9*y + 9");
+  fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_NEAR(g[0].value, -1.25, 1e-13);
+  EXPECT_NEAR(g[5].value, 0.5, 1e-13);
+  EXPECT_NEAR(g[9].value, 7, 1e-13);
+}
+
+TEST(FitConstants, RoundsInIntegerMode) {
+  const Columns c = sampled("3*x + 2.2", 20);
+  Genome g = nodes_of("1*x + 1");
+  const auto predicted = fit_constants(g, c.rows(), Constants::integer);
+  EXPECT_EQ(g[0].value, 3);
+  EXPECT_EQ(g[3].value, 2);
+  EXPECT_DOUBLE_EQ(predicted[0], 3 * c.x[0] + 2);
+}
+
+TEST(FitConstants, WeightsChangeTheLeastSquaresCriterion) {
+  Columns c = grid(20);
+  c.target.assign(20, 1.0);
+  c.target[0] = 100;  // an outlier with a tiny weight barely moves the fitted constant
+  Rows rows = c.rows();
+  rows.weights.assign(20, 1.0);
+  rows.weights[0] = 1e-12;
+  Genome g = nodes_of("5 + 0*x");
+  fit_constants(g, rows, Constants::fitted);
+  EXPECT_NEAR(g[0].value, 1.0, 1e-9);
+}
+
+TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
+  const Columns c = sampled("x", 10);
+  Genome g = nodes_of("log(x - 1.5)");
+  const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_TRUE(std::any_of(predicted.begin(), predicted.end(), [](double v) { return !std::isfinite(v); }));
+}
+
+}  // namespace
+}  // namespace specula::fit

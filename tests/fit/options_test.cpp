@@ -1,0 +1,78 @@
+// Options of the search: metrics, operator lists, size weights, and the choice of a formula.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "specula/error.h"
+#include "specula/fit/fit.h"
+
+namespace specula::fit {
+namespace {
+
+using expr::Op;
+
+TEST(Measure, ComputesEachMetricByHand) {
+  const std::vector<double> y{1, 2, 4}, f{1.5, 2, 3};  // errors 0.5, 0, -1
+  EXPECT_DOUBLE_EQ(measure(Metric::rms, f, y), std::sqrt(1.25 / 3));
+  EXPECT_DOUBLE_EQ(measure(Metric::mae, f, y), 0.5);
+  EXPECT_DOUBLE_EQ(measure(Metric::max_abs, f, y), 1);
+  EXPECT_DOUBLE_EQ(measure(Metric::mean_relative, f, y), (0.5 + 0.25) / 3);
+  // SST = (1-7/3)² + (2-7/3)² + (4-7/3)² = 14/3, SSE = 1.25
+  EXPECT_DOUBLE_EQ(measure(Metric::r2, f, y), 1 - 1.25 / (14.0 / 3));
+  EXPECT_EQ(measure(Metric::rms, std::vector<double>{NAN, 2, 4}, y), INFINITY);
+}
+
+TEST(Metric, NamesRoundTrip) {
+  for (Metric m : {Metric::rms, Metric::mae, Metric::max_abs, Metric::mean_relative, Metric::r2})
+    EXPECT_EQ(parse_metric(metric_name(m)), m);
+  EXPECT_THROW(parse_metric("mse"), InvalidArgument);
+  EXPECT_EQ(to_loss(Metric::r2, 0.75), 0.25);
+}
+
+TEST(Operators, ParseSymbolsAndFunctionNames) {
+  EXPECT_EQ(parse_operators("+,*,/"), (std::vector<Op>{Op::add, Op::mul, Op::div}));
+  EXPECT_EQ(parse_operators("+, -, sin ,exp,+"), (std::vector<Op>{Op::add, Op::sub, Op::sin, Op::exp}));
+  EXPECT_THROW(parse_operators("+,tan"), InvalidArgument);
+  EXPECT_THROW(parse_operators(""), InvalidArgument);
+}
+
+TEST(SizeWeights, DefaultTuringbotAndOverrides) {
+  const auto e = expr::parse("0.2*(n + 1.2) + 0.07/(0.6 + n)");
+  EXPECT_EQ(SizeWeights().of(e.nodes()), 11);
+  EXPECT_EQ(SizeWeights::parse("turingbot").of(e.nodes()), 12);  // the paper's size 12
+  EXPECT_EQ(SizeWeights::parse("/=3, *=2").of(e.nodes()), 14);
+  EXPECT_THROW(SizeWeights::parse("/=0"), InvalidArgument);
+  EXPECT_THROW(SizeWeights::parse("/=1.5"), InvalidArgument);
+  EXPECT_THROW(SizeWeights::parse("tan=2"), InvalidArgument);
+}
+
+Candidate candidate(int size, double train, std::optional<double> test = std::nullopt) {
+  return {expr::parse("x"), size, train, test};
+}
+
+TEST(Choose, ParsimoniousKneeAndBest) {
+  // The paper's front (Fig. 8, TuringBot's sizes and RMS).
+  const std::vector<Candidate> front{candidate(1, 62.583411), candidate(3, 0.183519),
+                                     candidate(5, 0.006839),  candidate(9, 0.006503),
+                                     candidate(10, 0.001128), candidate(12, 0.000280),
+                                     candidate(18, 0.000273)};
+  EXPECT_EQ(choose(front, Metric::rms, Choice::parsimonious, 1.5, 100), 5u);  // size 12
+  EXPECT_EQ(choose(front, Metric::rms, Choice::best, 1.5, 100), 6u);
+  EXPECT_EQ(choose(front, Metric::rms, Choice::knee, 1.5, 100), 2u);  // size 5
+}
+
+TEST(Choose, PrefersTestErrorAndTreatsR2AsHigherIsBetter) {
+  const std::vector<Candidate> overfit{candidate(3, 0.1, 0.1), candidate(9, 0.01, 0.5)};
+  EXPECT_EQ(choose(overfit, Metric::rms, Choice::best, 1.5, 1), 0u);
+  const std::vector<Candidate> r2{candidate(3, 0.9), candidate(7, 0.999)};
+  EXPECT_EQ(choose(r2, Metric::r2, Choice::best, 1.5, 1), 1u);
+  EXPECT_THROW(choose({}, Metric::rms, Choice::best, 1.5, 1), InvalidArgument);
+}
+
+TEST(Rounded, KeepsSignificantDigits) {
+  const auto e = rounded(expr::parse("0.19725431*n + 1.2389123e-5"), 3);
+  EXPECT_EQ(expr::to_infix(e), "0.197 * n + 1.24e-05");
+}
+
+}  // namespace
+}  // namespace specula::fit

@@ -1,0 +1,179 @@
+// The search end to end: recovery of known formulas, the paper's setting, determinism across
+// thread counts, budgets, the train/test split and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "specula/error.h"
+#include "specula/fit/fit.h"
+#include "specula/io/values.h"
+#include "specula/normalize/closed_form.h"
+
+namespace specula::fit {
+namespace {
+
+Data sampled(const char* truth, double from, double to, std::size_t n) {
+  const auto e = expr::parse(truth, {"x"});
+  Data d{{"x"}, {{}}, {}};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = from + (to - from) * static_cast<double>(i) / static_cast<double>(n - 1);
+    d.columns[0].push_back(x);
+    d.target.push_back(expr::evaluate(e, std::vector<double>{x}));
+  }
+  return d;
+}
+
+// Small searches bounded by generations, not time: the suite also runs under sanitizers.
+Options quick(std::int64_t generations = 10) {
+  Options o;
+  o.max_generations = generations;
+  o.time_limit_s = 1e4;
+  o.enumerate_max_size = 7;
+  o.population = 60;
+  o.threads = 2;
+  return o;
+}
+
+double rms_of(const expr::Expression& f, const Data& d) {
+  std::vector<double> predicted(d.target.size());
+  const std::vector<std::span<const double>> columns(d.columns.begin(), d.columns.end());
+  expr::evaluate_batch(f, columns, predicted);
+  return measure(Metric::rms, predicted, d.target);
+}
+
+TEST(Search, RecoversARationalFormulaFromNoiselessData) {
+  const Data d = sampled("2.5*x + 0.75/(x + 0.5)", 0.1, 5, 40);
+  Options o = quick(0);
+  o.enumerate_max_size = 9;
+  const Result r = search(d, o);
+  const auto& chosen = r.front[r.chosen];
+  EXPECT_LT(chosen.train_error, 1e-10);
+  EXPECT_LE(chosen.size, 9);
+}
+
+TEST(Search, GeneticSearchAloneRecoversAFormula) {
+  const Data d = sampled("x*x*x*0.5 + 2/x", 0.2, 3, 30);
+  Options o = quick(60);
+  o.enumerate_max_size = 0;
+  const Result r = search(d, o);
+  EXPECT_LT(r.front.back().train_error, 1e-10) << expr::to_infix(r.front.back().formula);
+}
+
+TEST(Search, RecoversAPolynomialWithoutConstants) {
+  const Data d = sampled("x*x*x + x*x + x", -1, 1, 20);
+  Options o = quick(30);
+  o.constants = Constants::none;
+  o.operators = {expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div};
+  const Result r = search(d, o);
+  EXPECT_LT(r.front.back().train_error, 1e-12);
+  for (const auto& c : r.front)
+    for (const auto& n : c.formula.nodes()) EXPECT_NE(n.op, expr::Op::constant);
+}
+
+// The paper's setting (Fig. 8): 50 coefficients rounded to 3 decimals, + × ÷, RMS. TuringBot's
+// size-12 formula has RMS 2.80e-4; the enumeration alone reaches that at size ≤ 12.
+TEST(Search, MatchesTuringBotOnThePapersRoundedCoefficients) {
+  Data d{{"n"}, {io::paper50()}, {}};
+  for (double n : d.columns[0]) d.target.push_back(std::round(normalize::log_rv(n) * 1000) / 1000);
+  Options o = quick(0);
+  o.enumerate_max_size = 11;
+  const Result r = search(d, o);
+  const auto size12 = std::find_if(r.front.rbegin(), r.front.rend(), [](const Candidate& c) { return c.size <= 12; });
+  ASSERT_NE(size12, r.front.rend());
+  EXPECT_LE(size12->train_error, 2.8e-4) << expr::to_infix(size12->formula);
+}
+
+// Reported errors are recomputed independently from the printed formula.
+TEST(Search, FrontIsParetoOrderedAndItsErrorsAreTrue) {
+  const Data d = sampled("exp(0.3*x) + x", 0, 3, 30);
+  Options o = quick(5);
+  o.operators = {expr::Op::add, expr::Op::mul, expr::Op::div, expr::Op::exp};
+  const Result r = search(d, o);
+  for (std::size_t i = 0; i < r.front.size(); ++i) {
+    const auto& c = r.front[i];
+    const auto reparsed = expr::parse(expr::to_infix(c.formula), {"x"});
+    EXPECT_NEAR(rms_of(reparsed, d), c.train_error, 1e-9 * std::max(1.0, c.train_error));
+    EXPECT_LE(c.size, o.max_size);
+    if (i > 0) {
+      EXPECT_GT(c.size, r.front[i - 1].size);
+      EXPECT_LT(c.train_error, r.front[i - 1].train_error);
+    }
+  }
+}
+
+std::vector<std::pair<std::string, double>> summary(const Result& r) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& c : r.front) out.emplace_back(expr::to_infix(c.formula), c.train_error);
+  return out;
+}
+
+TEST(Search, SameSeedSameFrontForAnyThreadCount) {
+  const Data d = sampled("x*x + 0.3/x", 0.2, 3, 25);
+  Options o = quick(10);
+  o.islands = 3;
+  o.threads = 1;
+  const auto one = summary(search(d, o));
+  o.threads = 2;
+  EXPECT_EQ(summary(search(d, o)), one);
+  o.threads = 3;
+  EXPECT_EQ(summary(search(d, o)), one);
+}
+
+TEST(Search, StopsAtTheTargetErrorOrTheEvaluationBudget) {
+  const Data d = sampled("2*x + 1", 0, 1, 10);
+  Options o = quick(1000);
+  o.target_error = 1e-9;
+  EXPECT_EQ(search(d, o).stopped_by, "target error");
+  const Data hard = sampled("sin(3*x) + x*x", 0, 2, 30);
+  Options budget = quick(1000);
+  budget.max_evaluations = 3000;
+  const Result r = search(hard, budget);
+  EXPECT_EQ(r.stopped_by, "evaluations");
+  EXPECT_GE(r.evaluations, 3000);
+}
+
+TEST(Search, HeldOutRowsGiveATestError) {
+  const Data d = sampled("x*x", 0, 2, 40);
+  Options o = quick(3);
+  o.test_fraction = 0.25;
+  const Result r = search(d, o);
+  for (const auto& c : r.front) ASSERT_TRUE(c.test_error.has_value());
+  EXPECT_LT(*r.front[r.chosen].test_error, 1e-12);
+  o.test_fraction = 0;
+  EXPECT_FALSE(search(d, o).front.front().test_error.has_value());
+}
+
+// With the last rows held out, a fit on x ≤ 1.5 is tested on x > 1.5: the kink shows.
+TEST(Search, LastRowsSplitTestsExtrapolation) {
+  Data d = sampled("x", 0, 2, 40);
+  for (std::size_t r = 30; r < 40; ++r) d.target[r] = 0;
+  Options o = quick(2);
+  o.test_fraction = 0.25;
+  o.split = Split::last;
+  const Result r = search(d, o);
+  EXPECT_LT(r.front.back().train_error, 1e-12);
+  EXPECT_GT(*r.front.back().test_error, 1.0);
+}
+
+TEST(Search, RejectsBadDataAndOptions) {
+  const Data good = sampled("x", 0, 1, 10);
+  Data nan = good;
+  nan.target[3] = std::nan("");
+  EXPECT_THROW(search(nan, quick()), InvalidArgument);
+  Data ragged = good;
+  ragged.columns[0].pop_back();
+  EXPECT_THROW(search(ragged, quick()), InvalidArgument);
+  EXPECT_THROW(search(Data{{"x"}, {{}}, {}}, quick()), InvalidArgument);
+  Options o = quick();
+  o.test_fraction = 1;
+  EXPECT_THROW(search(good, o), InvalidArgument);
+  o = quick();
+  o.islands = 0;
+  EXPECT_THROW(search(good, o), InvalidArgument);
+  o = quick();
+  o.max_size = 0;
+  EXPECT_THROW(search(good, o), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace specula::fit
