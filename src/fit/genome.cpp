@@ -191,6 +191,27 @@ Genome mutate(const Genome& g, const Alphabet& alphabet, Rng& rng) {
   return g;
 }
 
+Genome folded_constants(std::span<const Node> nodes) {
+  Genome out;
+  for (const Node& node : nodes) {
+    const auto operands = static_cast<std::size_t>(expr::arity(node.op));
+    const bool foldable = operands > 0 && std::all_of(out.end() - static_cast<std::ptrdiff_t>(operands), out.end(),
+                                                      [](const Node& n) { return n.op == Op::constant; });
+    if (foldable) {
+      Genome alone(out.end() - static_cast<std::ptrdiff_t>(operands), out.end());
+      alone.push_back(node);
+      const double value = expr::evaluate(expr::Expression(std::move(alone), {}), {});
+      if (std::isfinite(value)) {
+        out.resize(out.size() - operands);
+        out.push_back({Op::constant, 0, value});
+        continue;
+      }
+    }
+    out.push_back(node);
+  }
+  return out;
+}
+
 namespace {
 
 // A canonical subtree: its key, and for + and × the keys of its flattened operands.

@@ -44,6 +44,10 @@ Genome crossover(const Genome& a, const Genome& b, const Alphabet& alphabet, Rng
 /// hoist a child over its parent, or perturb a constant.
 Genome mutate(const Genome& g, const Alphabet& alphabet, Rng& rng);
 
+/// `nodes` with every operator whose operands are all constants replaced by its value (where
+/// finite): log(5.9) − exp(0.6) becomes one constant.
+Genome folded_constants(std::span<const expr::Node> nodes);
+
 /// A key equal for formulas that are the same up to the values of their free constants,
 /// commutativity and associativity of + and ×, and x ÷ c = c′·x.
 std::string canonical_key(std::span<const expr::Node> nodes);

@@ -45,7 +45,8 @@ struct Problem {
   Constants constants;
   SizeWeights weights;
 
-  Individual evaluate(Genome g) const {
+  Individual evaluate(const Genome& formula) const {
+    Genome g = folded_constants(formula);
     const auto predicted = fit_constants(g, train, constants);
     Individual out{std::move(g), {}, to_loss(metric, measure(metric, predicted, train_target)), 0};
     if (std::isnan(out.loss)) out.loss = INFINITY;
@@ -57,6 +58,7 @@ struct Problem {
 
 void validate(const Data& data, const Options& o) {
   if (data.variables.empty()) throw InvalidArgument("no variables to fit with");
+  expr::Expression({{Op::variable, 0, 0}}, data.variables);  // names must be identifiers, distinct
   if (data.columns.size() != data.variables.size())
     throw InvalidArgument("each variable needs one column of values");
   if (data.target.empty()) throw InvalidArgument("no data rows");
@@ -72,7 +74,17 @@ void validate(const Data& data, const Options& o) {
   for (std::size_t r = 0; r < data.target.size(); ++r)
     if (!std::isfinite(data.target[r]))
       throw InvalidArgument(fmt::format("target row {} is not a finite number", r + 1));
+  if (o.metric == Metric::mean_relative)
+    for (std::size_t r = 0; r < data.target.size(); ++r)
+      if (data.target[r] == 0)
+        throw InvalidArgument(fmt::format(
+            "the mean-relative error needs a non-zero target, but row {} is 0", r + 1));
   if (o.max_size < 1) throw InvalidArgument("--max-size must be at least 1");
+  if (o.enumerate_max_size < 0 || o.enumerate_limit < 0)
+    throw InvalidArgument("the enumeration size and limit must be ≥ 0");
+  if (o.max_generations.value_or(0) < 0 || o.max_evaluations.value_or(0) < 0)
+    throw InvalidArgument("the generation and evaluation budgets must be ≥ 0");
+  if (!(o.choose_factor >= 1)) throw InvalidArgument("the choose factor must be ≥ 1");
   if (!(o.test_fraction >= 0 && o.test_fraction < 1))
     throw InvalidArgument("the test fraction must be in [0, 1)");
   if (!(o.time_limit_s > 0)) throw InvalidArgument("the time limit must be positive");

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "specula/expr/expr.h"
 #include "specula/models/model.h"
 #include "text_support.h"
 
@@ -619,6 +621,190 @@ TEST_F(Cli, ModelsJson) {
   EXPECT_EQ(ids.size(), j.size());  // no duplicates
 }
 
+// ---- fit ------------------------------------------------------------------------------------
+
+// y = 2.5·x + 0.75/(x + 0.5): exactly a formula of the default operators + * / with constants.
+double pole_curve(double x) { return 2.5 * x + 0.75 / (x + 0.5); }
+// √x: no formula of + * / is exact, so the front keeps improving with size.
+double root_curve(double x) { return std::sqrt(x); }
+
+// 40 points evenly spaced in [0.1, 5].
+std::vector<double> fit_xs() {
+  std::vector<double> xs;
+  for (int i = 0; i < 40; ++i) xs.push_back(0.1 + i * 4.9 / 39);
+  return xs;
+}
+
+// Columns x and y = f(x), every number written to round-trip exactly.
+std::string csv_of(double (*f)(double)) {
+  std::string text = "x,y\n";
+  for (double x : fit_xs()) text += fmt::format("{},{}\n", x, f(x));
+  return text;
+}
+
+void expect_candidate(const nlohmann::json& c) {
+  ASSERT_TRUE(c.is_object()) << c.dump(2);
+  EXPECT_TRUE(c.contains("size") && c["size"].is_number_integer()) << c.dump(2);
+  EXPECT_TRUE(c.contains("train_error") && c["train_error"].is_number()) << c.dump(2);
+  EXPECT_TRUE(c.contains("test_error") && (c["test_error"].is_null() || c["test_error"].is_number()))
+      << c.dump(2);
+  EXPECT_TRUE(c.contains("formula") && c["formula"].is_string()) << c.dump(2);
+}
+
+// A search of a few seconds even under ASan: few generations of small islands after a short
+// enumeration.
+std::vector<std::string> small_search(const char* generations) {
+  return {"--generations", generations, "--enumerate-size", "5", "--population", "50"};
+}
+
+// `specula fit` on a data file of the test's own, target y and variable x, with --time as a cap
+// (the budgets are in generations).
+class CliFit : public Cli {
+ protected:
+  /// Writes `text` to a file in work() and returns its path.
+  std::string data_file(const std::string& name, const std::string& text) const {
+    const fs::path path = work() / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  static std::vector<std::string> fit_args(const std::string& data, const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"fit", "--data", data, "--target", "y", "--vars", "x", "--time", "30"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+
+  /// Runs a fit that must succeed with --format json and returns the parsed output.
+  nlohmann::json fit_json(const std::string& data, std::vector<std::string> extra) {
+    extra.insert(extra.end(), {"--format", "json"});
+    const Result r = ok(fit_args(data, extra));
+    nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+    EXPECT_FALSE(j.is_discarded()) << r;
+    EXPECT_TRUE(j.contains("front") && j["front"].is_array() && !j["front"].empty()) << r;
+    EXPECT_TRUE(j.contains("chosen")) << r;
+    return j;
+  }
+};
+
+TEST_F(CliFit, RecoversAKnownFormulaFromNoiselessData) {
+  // Stops once the formula is found (in the enumeration, today), else after 20 generations.
+  const nlohmann::json j =
+      fit_json(data_file("pole.csv", csv_of(pole_curve)), {"--generations", "20", "--target-error", "1e-12"});
+  ASSERT_TRUE(j.contains("front") && j.contains("chosen")) << j.dump(2);
+  for (const auto& c : j["front"]) expect_candidate(c);
+  expect_candidate(j["chosen"]);
+  EXPECT_LT(j["chosen"]["train_error"].get<double>(), 1e-9) << j.dump(2);
+  // The printed formula alone reproduces the data.
+  const auto chosen = specula::expr::parse(j["chosen"]["formula"].get<std::string>(), {"x"});
+  for (double x : fit_xs())
+    EXPECT_NEAR(specula::expr::evaluate(chosen, std::array{x}), pole_curve(x), 1e-8) << "x = " << x;
+}
+
+TEST_F(CliFit, FrontSizesRiseAndTrainErrorsFall) {
+  const nlohmann::json j = fit_json(data_file("root.csv", csv_of(root_curve)), small_search("5"));
+  ASSERT_TRUE(j.contains("front")) << j.dump(2);
+  const auto& front = j["front"];
+  EXPECT_GE(front.size(), 3u) << j.dump(2);
+  for (std::size_t i = 1; i < front.size(); ++i) {
+    EXPECT_GT(front[i]["size"].get<int>(), front[i - 1]["size"].get<int>()) << j.dump(2);
+    EXPECT_LT(front[i]["train_error"].get<double>(), front[i - 1]["train_error"].get<double>()) << j.dump(2);
+  }
+}
+
+TEST_F(CliFit, TestErrorOnlyWithHeldOutRows) {
+  const std::string data = data_file("root.csv", csv_of(root_curve));
+  std::vector<std::string> with_test_rows = small_search("2");
+  with_test_rows.insert(with_test_rows.end(), {"--test-fraction", "0.25"});
+  const nlohmann::json held_out = fit_json(data, with_test_rows);
+  const nlohmann::json all_rows = fit_json(data, small_search("2"));
+  ASSERT_TRUE(held_out.contains("front") && all_rows.contains("front"));
+  for (const auto& c : held_out["front"]) EXPECT_TRUE(c["test_error"].is_number()) << c.dump(2);
+  EXPECT_TRUE(held_out["chosen"]["test_error"].is_number()) << held_out.dump(2);
+  for (const auto& c : all_rows["front"]) EXPECT_TRUE(c["test_error"].is_null()) << c.dump(2);
+  EXPECT_TRUE(all_rows["chosen"]["test_error"].is_null()) << all_rows.dump(2);
+}
+
+TEST_F(CliFit, SameSeedAndGenerationsGiveTheSameFrontForAnyThreadCount) {
+  const std::string data = data_file("root.csv", csv_of(root_curve));
+  auto with_threads = [&](const char* threads) {
+    std::vector<std::string> extra = small_search("10");
+    extra.insert(extra.end(), {"--seed", "7", "--threads", threads});
+    return fit_json(data, extra);
+  };
+  const nlohmann::json one = with_threads("1");
+  const nlohmann::json two = with_threads("2");
+  EXPECT_EQ(one["stopped_by"], "generations") << one.dump(2);
+  EXPECT_EQ(two["stopped_by"], "generations") << two.dump(2);
+  EXPECT_EQ(one["front"], two["front"]) << "--threads 1:\n" << one["front"].dump(2) << "\n--threads 2:\n"
+                                        << two["front"].dump(2);
+}
+
+TEST_F(CliFit, BadDataIsOneLineNamingTheProblem) {
+  EXPECT_THAT(bad(fit_args(data_file("empty.csv", ""), {})).err, HasSubstr("empty file"));
+  EXPECT_THAT(bad(fit_args(data_file("header.csv", "x,y\n"), {})).err, HasSubstr("no data rows"));
+  const std::string good = data_file("good.csv", "x,y\n1,2\n2,3\n3,5\n");
+  EXPECT_THAT(bad({"fit", "--data", good, "--target", "z"}).err, HasSubstr("\"z\""));
+  const Result nan = bad(fit_args(data_file("nan.csv", "x,y\n1,2\n2,nan\n3,5\n"), {}));
+  EXPECT_THAT(nan.err, HasSubstr("line 3"));
+  EXPECT_THAT(nan.err, HasSubstr("nan"));
+  const Result text = bad(fit_args(data_file("text.csv", "x,y\n1,2\n2,abc\n3,5\n"), {}));
+  EXPECT_THAT(text.err, HasSubstr("line 3"));
+  EXPECT_THAT(text.err, HasSubstr("column 2"));
+  EXPECT_THAT(text.err, HasSubstr("abc"));
+}
+
+TEST_F(CliFit, BadOptionsAreOneLineNamingTheProblem) {
+  const std::string good = data_file("good.csv", "x,y\n1,2\n2,3\n3,5\n");
+  EXPECT_THAT(bad(fit_args(good, {"--metric", "nope"})).err, HasSubstr("nope"));
+  EXPECT_THAT(bad(fit_args(good, {"--ops", "+,tan"})).err, HasSubstr("tan"));
+  EXPECT_THAT(bad(fit_args(good, {"--test-fraction", "1.5"})).err, HasSubstr("test fraction"));
+  EXPECT_THAT(bad(fit_args(good, {"--generations", "-1"})).err, HasSubstr("budgets"));
+  EXPECT_THAT(bad(fit_args(good, {"--enumerate-size", "-2"})).err, HasSubstr("enumeration"));
+  const std::string zero = data_file("zero.csv", "x,y\n1,0\n2,1\n3,2\n");
+  EXPECT_THAT(bad(fit_args(zero, {"--metric", "mean-relative"})).err, HasSubstr("row 1 is 0"));
+}
+
+// Names are checked before the search starts, not after its budget.
+TEST_F(CliFit, BadColumnNamesFailBeforeSearching) {
+  const std::string dash = data_file("dash.csv", "a-b,y\n1,2\n2,3\n");
+  EXPECT_THAT(bad({"fit", "--data", dash, "--target", "y", "--time", "600"}).err,
+              HasSubstr("invalid variable name 'a-b'"));
+  const std::string keyword = data_file("keyword.csv", "double,y\n1,2\n2,3\n");
+  EXPECT_THAT(bad({"fit", "--data", keyword, "--target", "y", "--emit", "cpp", "--time", "600"}).err,
+              HasSubstr("reserved word in cpp"));
+  const std::string odd_target = data_file("odd.csv", "x,coef-1\n1,2\n2,3\n");
+  std::vector<std::string> args{"fit", "--data", odd_target, "--target", "coef-1", "--emit", "cpp"};
+  for (const auto& a : small_search("1")) args.push_back(a);
+  EXPECT_THAT(ok(args).out, HasSubstr("double fitted_coef_1(double x)"));
+}
+
+TEST_F(CliFit, EmitsTheChosenFormulaAsCode) {
+  const std::string data = data_file("pole.csv", csv_of(pole_curve));
+  auto emitting = [&](const char* language) {
+    std::vector<std::string> extra = small_search("2");
+    extra.insert(extra.end(), {"--emit", language});
+    return ok(fit_args(data, extra));
+  };
+  const Result cpp = emitting("cpp");
+  EXPECT_THAT(cpp.out, HasSubstr("double fitted_y(double x) {"));
+  const Result python = emitting("python");
+  EXPECT_THAT(python.out, ::testing::StartsWith("import math\n"));
+  EXPECT_THAT(python.out, HasSubstr("def fitted_y(x):"));
+}
+
+TEST_F(CliFit, OutWritesTheFileAndNothingElse) {
+  const std::string data = data_file("pole.csv", csv_of(pole_curve));
+  const fs::path file = work() / "front.json";
+  std::vector<std::string> extra = small_search("2");
+  extra.insert(extra.end(), {"--format", "json", "--out", file.string()});
+  const Result r = ok(fit_args(data, extra));
+  EXPECT_THAT(r.out, IsEmpty());
+  const nlohmann::json j = nlohmann::json::parse(read_file(file), nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << read_file(file);
+  EXPECT_TRUE(j.contains("front") && j["front"].is_array() && !j["front"].empty()) << j.dump(2);
+  EXPECT_THAT(listing(work()), ElementsAre("front.json", "pole.csv"));
+}
+
 // ---- bad input ------------------------------------------------------------------------------
 
 TEST_F(Cli, UnknownModel) {
@@ -712,7 +898,7 @@ TEST_F(Cli, HelpEverywhereHasAnExample) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"--help"}, {"models", "--help"}, {"eval", "--help"},
         {"normalize", "--help"}, {"report", "--help"}, {"albedo", "--help"},
-        {"check", "--help"}, {"error", "--help"}}) {
+        {"check", "--help"}, {"error", "--help"}, {"fit", "--help"}}) {
     const Result r = run(args);
     const std::string what = fmt::format("specula {}", fmt::join(args, " "));
     EXPECT_EQ(r.code, 0) << what << "\n" << r;

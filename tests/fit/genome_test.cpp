@@ -47,6 +47,16 @@ TEST(CanonicalKey, KeepsDifferentFormsApart) {
   EXPECT_NE(key("x"), key("y"));
 }
 
+TEST(FoldedConstants, CollapsesConstantOnlySubtrees) {
+  const auto folded = [](std::string_view text) {
+    return expr::to_infix(expr::Expression(folded_constants(nodes_of(text)), {"x", "y"}));
+  };
+  EXPECT_EQ(folded("x + (2 * 3 - 1)"), "x + 5");
+  EXPECT_EQ(folded("sin(0) * x + exp(0)"), "0 * x + 1");
+  EXPECT_EQ(folded("x * log(0 - 1)"), "x * log(-1)");  // nan stays unfolded
+  EXPECT_EQ(folded("x / y"), "x / y");
+}
+
 Alphabet test_alphabet(int max_size, Constants constants = Constants::fitted) {
   Options o;
   o.operators = {expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div, expr::Op::sin,

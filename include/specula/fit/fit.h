@@ -110,7 +110,7 @@ struct Progress {
 };
 
 struct Result {
-  std::vector<Candidate> front;  // ascending size, strictly falling train error
+  std::vector<Candidate> front;  // ascending size, each more accurate on the training rows
   std::size_t chosen = 0;        // index into front
   std::int64_t evaluations = 0;  // formulas whose constants were fitted and error measured
   std::int64_t generations = 0;
