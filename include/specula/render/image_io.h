@@ -1,0 +1,51 @@
+#pragma once
+// Images as files: PNG (8-bit sRGB, libpng) and OpenEXR (linear half or float RGB), each with
+// text metadata (model, parameters, form, renderer settings). Writes are atomic: the file is
+// encoded in memory, written to a temporary name and renamed, so a failed write leaves no file.
+// Every failure is one InvalidArgument line naming the path ("cannot write '…': …").
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "specula/render/image.h"
+
+namespace specula::render {
+
+/// Key-value text: PNG tEXt chunks (keys of 1-79 Latin-1 characters), EXR string attributes.
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+enum class ExrPixel { half, float32 };
+
+/// "half" or "float"; throws InvalidArgument otherwise.
+ExrPixel parse_exr_pixel(std::string_view text);
+
+/// 8-bit sRGB through `display` (see to_srgb8), one tEXt chunk per metadata entry (iTXt when
+/// the value is not ASCII).
+void write_png(const std::filesystem::path& path, const Image& image, const Display& display,
+               const Metadata& metadata = {});
+
+/// The linear samples as they are (no display transform), one string attribute per entry.
+void write_exr(const std::filesystem::path& path, const Image& image, ExrPixel pixel = ExrPixel::half,
+               const Metadata& metadata = {});
+
+enum class ImageFormat { png, exr };
+
+/// By extension, .png or .exr in any case; throws InvalidArgument for any other.
+ImageFormat image_format(const std::filesystem::path& path);
+
+struct ImageFile {
+  Image image;
+  Metadata metadata;  ///< PNG: the tEXt chunks; EXR: the string attributes
+};
+
+/// A PNG decoded to linear RGB (sRGB decoding of each 8-bit code; any colour type or bit depth
+/// libpng reads, alpha dropped).
+ImageFile read_png(const std::filesystem::path& path);
+/// An EXR's R, G and B channels (missing ones read as 0) as float.
+ImageFile read_exr(const std::filesystem::path& path);
+/// read_png or read_exr by extension.
+ImageFile read_image(const std::filesystem::path& path);
+
+}  // namespace specula::render

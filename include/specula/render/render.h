@@ -1,0 +1,25 @@
+#pragma once
+// The CPU renderer: one primary ray through each pixel centre, local shading (MATH.md §5,
+// Figs. 10-11), shadow rays where the scene can shadow itself.
+#include "specula/render/image.h"
+#include "specula/render/scene.h"
+
+namespace specula::render {
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+};
+
+/// The linear radiance image of `scene`. Per pixel: the nearest surface along the ray through the
+/// pixel centre, shaded as Material says, each light's term dropped where a shadow ray toward it
+/// is blocked; the background where the ray hits nothing. Surfaces are two-sided: normals face
+/// the viewer. A scene of one sphere casts no shadow rays: a convex object shadows itself exactly
+/// where N·L ≤ 0, which the shading already drops.
+///
+/// Rows run in parallel (oneTBB); each pixel is computed on its own and stored at its own index,
+/// so the image is bit-identical for any thread count. Throws InvalidArgument for an image size
+/// outside [1, kMaxImageSide] or an invalid scene (see validate).
+Image render_cpu(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace specula::render

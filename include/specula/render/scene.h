@@ -1,0 +1,100 @@
+#pragma once
+// What a frame shows (MATH.md §5, Figs. 10-11): spheres and triangle meshes, a pinhole camera,
+// directional and point lights, and one material whose specular part is any specula Model.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "specula/brdf/vec3.h"
+#include "specula/models/model.h"
+#include "specula/render/image.h"
+
+namespace specula::render {
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;  ///< unit
+};
+
+struct Sphere {
+  Vec3 centre;
+  double radius = 1;
+};
+
+struct Triangle {
+  std::array<Vec3, 3> vertices;
+  /// Vertex normals for smooth shading (from the OBJ's vn); the face normal when absent.
+  std::array<Vec3, 3> normals;
+  bool has_normals = false;
+};
+
+/// Every face of a Wavefront OBJ file, polygons split into triangle fans (tinyobjloader); the
+/// .mtl, texture coordinates and groups are ignored. Throws InvalidArgument ("cannot read …")
+/// for a missing or unreadable file, an index out of range, or a file with no triangle.
+std::vector<Triangle> load_obj(const std::filesystem::path& path);
+
+/// A pinhole camera; the vertical field of view spans the image height.
+struct Camera {
+  Vec3 position{0, 0, 3.8};
+  Vec3 look_at{0, 0, 0};
+  Vec3 up{0, 1, 0};
+  double vertical_fov_deg = 35;
+};
+
+/// A camera on the +z side of a bounding sphere, looking at its centre from the distance where
+/// the sphere fills 1/1.15 of the vertical field of view.
+Camera framing(const Vec3& centre, double radius, double vertical_fov_deg = 35);
+/// framing() of the triangles' bounding box (its centre and half diagonal).
+Camera framing(const std::vector<Triangle>& triangles, double vertical_fov_deg = 35);
+
+enum class LightKind { directional, point };
+
+struct Light {
+  LightKind kind = LightKind::directional;
+  Vec3 direction{-1, 1, 1};  ///< directional lights: toward the light, any length
+  Vec3 position;             ///< point lights
+  Rgb colour{1, 1, 1};
+  /// Directional: the irradiance E on a surface facing the light is colour·intensity;
+  /// point: the radiant intensity, E = colour·intensity / d² at distance d.
+  double intensity = 1;
+};
+
+/// "dir:x,y,z[:r,g,b[:intensity]]" or "point:x,y,z[:r,g,b[:intensity]]" (colour 1,1,1 and
+/// intensity 1 by default); throws InvalidArgument naming the malformed part.
+Light parse_light(std::string_view spec);
+/// The spec parse_light reads back, e.g. "dir:-1,1,1:1,1,1:1".
+std::string to_string(const Light& light);
+
+/// Lambert diffuse + the model's specular lobe + ambient (MATH.md §5):
+/// L_o = ambient·diffuse + Σ_lights (diffuse/π + specular·f(N, L, V)) · E · max(0, N·L).
+struct Material {
+  explicit Material(Model specular_model) : model(std::move(specular_model)) {}
+
+  Model model;
+  Rgb diffuse{0.55, 0.12, 0.1};  ///< albedo ρ_d per channel
+  Rgb specular{0.4, 0.4, 0.4};   ///< ρ_s: scales the model's f per channel
+  Rgb ambient{0.03, 0.03, 0.03}; ///< ambient radiance, reflected as ambient·diffuse
+};
+
+struct Scene {
+  Camera camera;
+  std::vector<Sphere> spheres;
+  std::vector<Triangle> triangles;
+  std::vector<Light> lights;
+  Material material;
+  Rgb background{0, 0, 0};  ///< what a primary ray that hits nothing sees
+};
+
+/// One unit sphere at the origin in front of the default camera, one directional light from the
+/// upper left front, and `model` as the specular part of the default material.
+Scene default_scene(Model model);
+
+/// Throws InvalidArgument naming the first invalid part: a degenerate camera, a field of view
+/// outside (0°, 180°), a sphere radius ≤ 0, a zero light direction, a negative or non-finite
+/// colour or intensity.
+void validate(const Scene& scene);
+
+}  // namespace specula::render
