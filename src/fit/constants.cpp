@@ -249,6 +249,7 @@ class Projection {
       if (g[i].op == Op::constant) constant_nodes_.push_back(i);
     const auto linear = linear_constants(g);
     for (std::size_t k = 0; k < linear.size(); ++k) (linear[k] ? linear_ : nonlinear_).push_back(k);
+    for (double y : rows.target) target_scale_ = std::max(target_scale_, std::abs(y));
     w_.sqrt_w.assign(rows.size(), 1.0);
     for (std::size_t r = 0; r < rows.weights.size(); ++r) w_.sqrt_w[r] = std::sqrt(rows.weights[r]);
   }
@@ -262,28 +263,40 @@ class Projection {
   // Solves the linear constants for the current nonlinear ones; returns the weighted squared
   // error (inf if the formula is undefined on the rows).
   double solve_linear() {
-    evaluate();
-    if (!all_finite(w_.value) || !all_finite(w_.gradient)) return INFINITY;
-    if (!linear_.empty()) {
-      const std::size_t n = rows_.size();
-      fill_columns(w_.G, linear_);
-      w_.b.resize(static_cast<Eigen::Index>(n));
-      for (std::size_t r = 0; r < n; ++r) {
-        double f0 = w_.value[r];
-        for (std::size_t k : linear_) f0 -= gradient(k, r) * constant(k);
-        w_.b(static_cast<Eigen::Index>(r)) = w_.sqrt_w[r] * (rows_.target[r] - f0);
-      }
-      w_.least_squares.compute(w_.G);
-      w_.s = w_.least_squares.solve(w_.b);
-      if (!w_.s.allFinite()) return INFINITY;
-      // The formula is affine in s: its new values follow without evaluating it again.
-      for (std::size_t j = 0; j < linear_.size(); ++j) {
-        const double change = w_.s(static_cast<Eigen::Index>(j)) - constant(linear_[j]);
-        for (std::size_t r = 0; r < n; ++r) w_.value[r] += change * gradient(linear_[j], r);
-        constant(linear_[j]) = w_.s(static_cast<Eigen::Index>(j));
-      }
+    for (int pass = 0; pass < 3; ++pass) {
+      evaluate();
+      if (!all_finite(w_.value) || !all_finite(w_.gradient)) return INFINITY;
+      if (linear_.empty()) break;
+      const double jump = solve_linear_change();
+      if (!std::isfinite(jump)) return INFINITY;
+      // Values moved by far more than the data carry the rounding of the move: once more
+      // from the new point.
+      if (jump <= 1e3 * target_scale_) break;
     }
     return squared_error();
+  }
+
+  // Moves the linear constants by the least-squares change δ for the current residuals (the
+  // formula is affine in them, so its values move by G·δ exactly); returns max |G·δ|.
+  double solve_linear_change() {
+    const std::size_t n = rows_.size();
+    fill_columns(w_.G, linear_);
+    w_.b.resize(static_cast<Eigen::Index>(n));
+    for (std::size_t r = 0; r < n; ++r)
+      w_.b(static_cast<Eigen::Index>(r)) = w_.sqrt_w[r] * (rows_.target[r] - w_.value[r]);
+    w_.least_squares.compute(w_.G);
+    w_.s = w_.least_squares.solve(w_.b);
+    if (!w_.s.allFinite()) return INFINITY;
+    double jump = 0;
+    for (std::size_t r = 0; r < n; ++r) {
+      double move = 0;
+      for (std::size_t j = 0; j < linear_.size(); ++j)
+        move += w_.s(static_cast<Eigen::Index>(j)) * gradient(linear_[j], r);
+      w_.value[r] += move;
+      jump = std::max(jump, std::abs(move));
+    }
+    for (std::size_t j = 0; j < linear_.size(); ++j) constant(linear_[j]) += w_.s(static_cast<Eigen::Index>(j));
+    return jump;
   }
 
   // The damped Gauss-Newton step for the nonlinear constants, on the projected problem: the
@@ -353,6 +366,7 @@ class Projection {
   const Rows& rows_;
   Workspace& w_;
   std::vector<std::size_t> constant_nodes_, linear_, nonlinear_;
+  double target_scale_ = 1;
 };
 
 constexpr int kMaxIterations = 30;
@@ -386,10 +400,10 @@ std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode) {
   Projection p(g, rows, workspace);
   const double cost = p.solve_linear();
   if (std::isfinite(cost) && p.nonlinear_count() > 0) levenberg_marquardt(p, cost);
-  if (mode == Constants::integer && p.constant_count() > 0) {
-    p.round_constants();
-    p.evaluate();
-  }
+  if (mode == Constants::integer) p.round_constants();
+  // Afresh: the values updated in place by the linear solves carry the cancellation error of
+  // any large change in the linear constants.
+  if (p.constant_count() > 0) p.evaluate();
   return p.value();
 }
 

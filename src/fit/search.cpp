@@ -45,16 +45,35 @@ struct Problem {
   Constants constants;
   SizeWeights weights;
 
+  double largest_constant = INFINITY;
+
   Individual evaluate(const Genome& formula) const {
     Genome g = folded_constants(formula);
     const auto predicted = fit_constants(g, train, constants);
     Individual out{std::move(g), {}, to_loss(metric, measure(metric, predicted, train_target)), 0};
-    if (std::isnan(out.loss)) out.loss = INFINITY;
+    if (std::isnan(out.loss) || cancels(out.genome)) out.loss = INFINITY;
     out.key = canonical_key(out.genome);
     out.size = weights.of(out.genome);
     return out;
   }
+
+  // A fitted constant far beyond the data's scale means the fit works by cancellation between
+  // huge terms (a line drawn as a far-off pole, n − n + c): rounding, not a formula.
+  bool cancels(const Genome& g) const {
+    return std::any_of(g.begin(), g.end(), [&](const Node& n) {
+      return n.op == Op::constant && std::abs(n.value) > largest_constant;
+    });
+  }
 };
+
+// Constants may reach 1e6 times the largest magnitude in the data (or 1e6 for data within ±1).
+double constant_limit(const Data& data) {
+  double scale = 1;
+  for (double y : data.target) scale = std::max(scale, std::abs(y));
+  for (const auto& column : data.columns)
+    for (double x : column) scale = std::max(scale, std::abs(x));
+  return 1e6 * scale;
+}
 
 void validate(const Data& data, const Options& o) {
   if (data.variables.empty()) throw InvalidArgument("no variables to fit with");
@@ -108,7 +127,7 @@ std::vector<std::size_t> test_rows(std::size_t rows, const Options& o) {
 }
 
 Problem make_problem(const Data& data, const Options& o) {
-  Problem p{{}, {}, {}, {}, {}, o.metric, o.constants, o.weights};
+  Problem p{{}, {}, {}, {}, {}, o.metric, o.constants, o.weights, constant_limit(data)};
   const auto test = test_rows(data.target.size(), o);
   std::vector<bool> held_out(data.target.size(), false);
   for (auto r : test) held_out[r] = true;

@@ -115,6 +115,15 @@ TEST(FitConstants, SolvesPurelyLinearFormulasExactly) {
   EXPECT_NEAR(g[9].value, 7, 1e-13);
 }
 
+// Starting far from the solution must not leave the cancellation error of the jump in the
+// returned predictions.
+TEST(FitConstants, PredictionsAreExactAfterLargeLinearSteps) {
+  const Columns c = sampled("2*x + 1", 20);
+  Genome g = nodes_of("1e12 + 1e12*x");
+  const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
+  for (std::size_t r = 0; r < predicted.size(); ++r) EXPECT_NEAR(predicted[r], c.target[r], 1e-14);
+}
+
 TEST(FitConstants, RoundsInIntegerMode) {
   const Columns c = sampled("3*x + 2.2", 20);
   Genome g = nodes_of("1*x + 1");
