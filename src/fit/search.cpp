@@ -30,6 +30,7 @@ struct Individual {
   std::string key;
   double loss = INFINITY;
   int size = 0;
+  bool cancels = false;  // fits by cancellation: may breed, never enters the front
 };
 
 bool better(const Individual& a, const Individual& b) {
@@ -51,14 +52,16 @@ struct Problem {
     Genome g = folded_constants(formula);
     const auto predicted = fit_constants(g, train, constants);
     Individual out{std::move(g), {}, to_loss(metric, measure(metric, predicted, train_target)), 0};
-    if (std::isnan(out.loss) || cancels(out.genome)) out.loss = INFINITY;
+    if (std::isnan(out.loss)) out.loss = INFINITY;
+    out.cancels = cancels(out.genome);
     out.key = canonical_key(out.genome);
     out.size = weights.of(out.genome);
     return out;
   }
 
   // A fitted constant far beyond the data's scale means the fit works by cancellation between
-  // huge terms (a line drawn as a far-off pole, n − n + c): rounding, not a formula.
+  // huge terms (a line drawn as a far-off pole, n − n + c): rounding, not a formula. Such
+  // formulas stay in the populations (their offspring may be sound) but not in the front.
   bool cancels(const Genome& g) const {
     return std::any_of(g.begin(), g.end(), [&](const Node& n) {
       return n.op == Op::constant && std::abs(n.value) > largest_constant;
@@ -152,7 +155,7 @@ class Archive {
   explicit Archive(double noise) : noise_(noise) {}
 
   void offer(const Individual& x) {
-    if (!std::isfinite(x.loss)) return;
+    if (!std::isfinite(x.loss) || x.cancels) return;
     auto [it, inserted] = best_.try_emplace(x.size, x);
     if (!inserted && x.loss < it->second.loss) it->second = x;
   }
