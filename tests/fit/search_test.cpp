@@ -83,6 +83,20 @@ TEST(Search, MatchesTuringBotOnThePapersRoundedCoefficients) {
   EXPECT_LE(size12->train_error, 2.8e-4) << expr::to_infix(size12->formula);
 }
 
+// Under TuringBot's weights the search meets fits by cancellation (a line drawn as a pole at
+// n ≈ 5.6e6 with a 6e12 numerator, n − n + c with 1e10 coefficients); none may reach the front.
+TEST(Search, FrontHoldsNoFitsByCancellation) {
+  Data d{{"n"}, {io::paper50()}, {}};
+  for (double n : d.columns[0]) d.target.push_back(std::round(normalize::log_rv(n) * 1000) / 1000);
+  Options o = quick(200);
+  o.enumerate_max_size = 11;
+  o.weights = SizeWeights::parse("turingbot");
+  const Result r = search(d, o);
+  for (const auto& c : r.front)
+    for (const auto& node : c.formula.nodes())
+      EXPECT_LE(std::abs(node.value), 1e6 * 1000) << expr::to_infix(c.formula);
+}
+
 // Reported errors are recomputed independently from the printed formula.
 TEST(Search, FrontIsParetoOrderedAndItsErrorsAreTrue) {
   const Data d = sampled("exp(0.3*x) + x", 0, 3, 30);
