@@ -48,13 +48,13 @@ struct Problem {
 
   double largest_constant = INFINITY;
 
-  Individual evaluate(const Genome& formula) const {
+  // `key` is canonical_key(formula), which folding constants does not change.
+  Individual evaluate(const Genome& formula, std::string key) const {
     Genome g = folded_constants(formula);
     const auto predicted = fit_constants(g, train, constants);
-    Individual out{std::move(g), {}, to_loss(metric, measure(metric, predicted, train_target)), 0};
+    Individual out{std::move(g), std::move(key), to_loss(metric, measure(metric, predicted, train_target)), 0};
     if (std::isnan(out.loss)) out.loss = INFINITY;
     out.cancels = cancels(out.genome);
-    out.key = canonical_key(out.genome);
     out.size = weights.of(out.genome);
     return out;
   }
@@ -185,10 +185,10 @@ double rounding_noise(const Problem& p) {
 std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
   std::vector<std::vector<Genome>> by_size(static_cast<std::size_t>(o.enumerate_max_size) + 1);
   std::vector<Genome> all;
-  std::unordered_map<std::string, bool> seen;
+  std::unordered_set<std::string> seen;
   const auto limit = static_cast<std::size_t>(o.enumerate_limit);
   const auto add = [&](Genome g, int size) {
-    if (all.size() >= limit || !seen.try_emplace(canonical_key(g), true).second) return;
+    if (all.size() >= limit || !seen.insert(canonical_key(g)).second) return;
     by_size[static_cast<std::size_t>(size)].push_back(g);
     all.push_back(std::move(g));
   };
@@ -220,13 +220,14 @@ std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
 
 // Fits an enumerated form from two starting points when it has nonlinear constants.
 Individual fit_form(const Problem& p, const Genome& form) {
-  Individual best = p.evaluate(form);
+  const std::string key = canonical_key(form);
+  Individual best = p.evaluate(form, key);
   const auto linear = linear_constants(form);
   if (std::find(linear.begin(), linear.end(), false) != linear.end()) {
     Genome other = form;
     for (auto& n : other)
       if (n.op == Op::constant) n.value = -0.5;
-    Individual second = p.evaluate(other);
+    Individual second = p.evaluate(other, key);
     if (better(second, best)) best = std::move(second);
   }
   return best;
@@ -249,6 +250,16 @@ std::vector<int> pareto_ranks(const std::vector<Individual>& xs) {
     rank[i] = r;
   }
   return rank;
+}
+
+// Indices of xs by Pareto rank, then error (then size); ties keep their order.
+std::vector<std::size_t> pareto_order(const std::vector<Individual>& xs, const std::vector<int>& ranks) {
+  std::vector<std::size_t> order(xs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) {
+    return ranks[i] < ranks[j] || (ranks[i] == ranks[j] && better(xs[i], xs[j]));
+  });
+  return order;
 }
 
 class Island {
@@ -297,11 +308,11 @@ class Island {
   }
 
  private:
-  Individual evaluate(Genome g) {
+  Individual evaluate(const Genome& g) {
     const std::string key = canonical_key(g);
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
     ++evaluations_;
-    Individual x = problem_.evaluate(std::move(g));
+    Individual x = problem_.evaluate(g, key);
     if (cache_.size() > 200000) cache_.clear();
     cache_.emplace(key, x);
     return x;
@@ -322,11 +333,7 @@ class Island {
   // Keeps the best `population` formulas by Pareto rank, then error.
   void select() {
     const auto ranks = pareto_ranks(population_);
-    std::vector<std::size_t> order(population_.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) {
-      return ranks[i] < ranks[j] || (ranks[i] == ranks[j] && better(population_[i], population_[j]));
-    });
+    auto order = pareto_order(population_, ranks);
     order.resize(std::min(order.size(), static_cast<std::size_t>(options_.population)));
     std::vector<Individual> kept;
     rank_.clear();
@@ -376,22 +383,17 @@ Candidate candidate(const Individual& x, const Problem& p, const Data& data) {
   return c;
 }
 
-// Seeds for island i: the enumeration's Pareto layers dealt out round-robin, best first.
-std::vector<Individual> seeds_for(const std::vector<Individual>& fitted, std::size_t island,
-                                  std::size_t islands, std::size_t count) {
+// Seeds for each island: the enumeration's Pareto layers dealt out round-robin, best first.
+std::vector<std::vector<Individual>> seeds_for(const std::vector<Individual>& fitted,
+                                               std::size_t islands, std::size_t count) {
   std::vector<Individual> finite;
   for (const auto& x : fitted)
     if (std::isfinite(x.loss)) finite.push_back(x);
-  const auto ranks = pareto_ranks(finite);
-  std::vector<std::size_t> order(finite.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) {
-    return ranks[i] < ranks[j] || (ranks[i] == ranks[j] && better(finite[i], finite[j]));
-  });
-  std::vector<Individual> out;
-  for (std::size_t k = island; k < order.size() && out.size() < count; k += islands)
-    out.push_back(finite[order[k]]);
-  return out;
+  const auto order = pareto_order(finite, pareto_ranks(finite));
+  std::vector<std::vector<Individual>> seeds(islands);
+  for (std::size_t k = 0; k < order.size() && k < count * islands; ++k)
+    seeds[k % islands].push_back(finite[order[k]]);
+  return seeds;
 }
 
 class Search {
@@ -446,9 +448,9 @@ class Search {
     std::vector<Island> islands;
     for (std::size_t i = 0; i < count; ++i) islands.emplace_back(problem_, alphabet_, options_, i + 1);
     const std::int64_t enumerated = evaluations_;
-    const auto seed_count = static_cast<std::size_t>(options_.population) / 2;
+    const auto seeds = seeds_for(fitted, count, static_cast<std::size_t>(options_.population) / 2);
     in_parallel(islands, [&](Island& island, std::size_t i) {
-      island.populate(seeds_for(fitted, i, count, seed_count));
+      island.populate(seeds[i]);
     });
     while (!stopped()) {
       const int epoch = options_.max_generations
