@@ -1,0 +1,50 @@
+#pragma once
+// GLSL for every specula model (the paper's Fig. 10, for all of MATH.md §2): self-contained
+// functions that compute, in float, what the C++ Model computes, with the exact normalization
+// evaluated in the shader. Each emitted function's first line cites its source, as Filament's
+// surface_brdf.fs does.
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "specula/models/model.h"
+
+namespace specula::gl {
+
+/// The GLSL dialects specula emits: desktop GLSL 3.30 core, GLSL ES 3.00, and WebGL 2 (whose
+/// shading language is GLSL ES 3.00; emitted identically, named for the user's benefit).
+enum class Dialect { glsl330, gles300, webgl2 };
+
+/// "glsl330", "gles300" or "webgl2"; throws InvalidArgument otherwise.
+Dialect parse_dialect(std::string_view text);
+const char* to_string(Dialect dialect) noexcept;
+
+/// The first lines of a shader in `dialect`: "#version 330 core\n", or "#version 300 es\n" with
+/// highp float and int precision.
+std::string version_header(Dialect dialect);
+
+/// GLSL (no #version, no uniforms; valid in every Dialect) defining the model's functions — its
+/// lobe, its coefficient, its form's cosine, or the full BRDF — then
+///     float specula_<id>(vec3 N, vec3 L, vec3 V, <its parameters as floats>)
+///     float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params)
+/// with params = the parameter values in ModelInfo::params order (x first). N, L and V are unit
+/// vectors (L toward the light, V toward the viewer). The form and a coefficient that differs
+/// from the model's own (Model::with_coef) are baked in. Lobe models return k·F(c) without testing
+/// N·L, as Model does; full BRDFs return 0 below the horizon, as theirs do.
+///
+/// Accuracy: float arithmetic on the formulas of MATH.md §2; the log lobe's coef(n) from
+/// normalize::log_rv_approx's Chebyshev series (4e-7 relative for n ∈ (0, 1e30]); Schlick's k
+/// by its closed form, or by a 24-term series in 1 − n where that form cancels (|1 − n| ≤ ½).
+std::string model_glsl(const Model& model);
+
+/// The model's parameter values in the layout specula_brdf's `params` expects (unused: 0).
+std::array<float, 4> model_params(const Model& model);
+
+/// "specula_<id>" with '-' as '_': the name of the model's own entry function.
+std::string entry_name(const Model& model);
+
+/// A float as a GLSL literal that reads back to the same float ("2.0", "0.197253996",
+/// "2.02299907e-09").
+std::string float_literal(double value);
+
+}  // namespace specula::gl

@@ -1,0 +1,121 @@
+// The emitted GLSL: accepted by the reference compiler for every model and dialect, ASCII only,
+// every function cited on its first line, parameters and overrides wired as documented. (What it
+// computes is compared with the C++ models on a GL context in gl_test.)
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <regex>
+
+#include "glsl_support.h"
+#include "specula/error.h"
+#include "specula/gl/glsl.h"
+#include "specula/normalize/log_coef_chebyshev.h"
+#include "text_support.h"
+
+namespace specula::gl {
+namespace {
+
+constexpr Dialect kDialects[] = {Dialect::glsl330, Dialect::gles300, Dialect::webgl2};
+
+/// A fragment shader that calls the model's entry point with its parameters as a uniform.
+std::string test_shader(const Model& model, Dialect dialect) {
+  return version_header(dialect) + model_glsl(model) +
+         "uniform vec4 u_params;\nout vec4 colour;\n"
+         "void main() {\n  vec3 N = vec3(0.0, 0.0, 1.0), L = normalize(vec3(1.0, 0.0, 1.0));\n"
+         "  colour = vec4(specula_brdf(N, L, normalize(vec3(-1.0, 0.2, 1.0)), u_params));\n}\n";
+}
+
+TEST(Glsl, EveryModelCompilesInEveryDialect) {
+  for (const auto& info : models())
+    for (const Dialect dialect : kDialects)
+      for (const Form form : {Form::rv, Form::nh}) {
+        if (info.kind == ModelKind::brdf && form == Form::nh) continue;
+        const Model model = make_model(info.id, {}, info.kind == ModelKind::lobe ? std::optional(form) : std::nullopt);
+        const auto check = testing::validate_glsl(test_shader(model, dialect), "frag");
+        EXPECT_TRUE(check.ok) << info.id << " " << to_string(dialect) << "\n" << check.log;
+      }
+}
+
+TEST(Glsl, TheValidatorRejectsABrokenShader) {
+  EXPECT_FALSE(testing::validate_glsl(version_header(Dialect::glsl330) + "void main() { float x = ; }\n", "frag").ok);
+  // A model function without its entry point's caller still needs every helper it calls.
+  const std::string glsl = model_glsl(make_model("log-normalized"));
+  const std::string missing = std::regex_replace(glsl, std::regex("float specula_log_coef_j[^}]*\\}"), "");
+  EXPECT_FALSE(testing::validate_glsl(version_header(Dialect::glsl330) + missing +
+                                          "out vec4 c;\nvoid main() { c = vec4(specula_log_rv_coef(2.0)); }\n",
+                                      "frag").ok);
+}
+
+TEST(Glsl, AsciiOnlyAndEveryFunctionCitedOnItsFirstLine) {
+  const std::regex definition(R"(^(float|vec2|vec3|vec4) (\w+)\(.*\) \{$)");
+  for (const auto& info : models()) {
+    const std::string glsl = model_glsl(make_model(info.id));
+    for (const char ch : glsl) ASSERT_LT(static_cast<unsigned char>(ch), 0x80) << info.id;
+    const auto lines = testing::lines_of(glsl);
+    int functions = 0;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      std::smatch match;
+      if (!std::regex_match(lines[i], match, definition)) continue;
+      ++functions;
+      ASSERT_GT(i, 0u);
+      EXPECT_EQ(lines[i - 1].rfind("// ", 0), 0u) << info.id << ": " << match[2] << " has no citation";
+    }
+    EXPECT_GE(functions, 2) << info.id;
+  }
+}
+
+TEST(Glsl, EntryPointTakesTheModelsParametersInOrder) {
+  const std::string schlick = model_glsl(make_model("schlick-modified"));
+  EXPECT_NE(schlick.find("float specula_schlick_modified(vec3 N, vec3 L, vec3 V, float n, float s)"), std::string::npos);
+  EXPECT_NE(schlick.find("return specula_schlick_modified(N, L, V, params.x, params.y);"), std::string::npos);
+  const auto packed = model_params(make_model("schlick-modified", {{"n", 7}, {"s", 2.5}}));
+  EXPECT_EQ(packed, (std::array<float, 4>{7, 2.5, 0, 0}));
+  const auto ward = model_params(make_model("ward", {{"alpha", 0.125}}));
+  EXPECT_EQ(ward, (std::array<float, 4>{0.125f, 1, 0, 0}));
+  EXPECT_EQ(entry_name(make_model("cook-torrance-1982")), "specula_cook_torrance_1982");
+}
+
+TEST(Glsl, FormAndCoefficientOverridesAreBakedIn) {
+  const std::string rv = model_glsl(make_model("log-normalized"));
+  EXPECT_NE(rv.find("specula_log_rv_coef(n) * specula_log_lobe(specula_cos_rv(N, L, V), n)"), std::string::npos);
+  const std::string nh = model_glsl(make_model("log-normalized", {}, Form::nh));
+  EXPECT_NE(nh.find("specula_log_rv_coef(n) * specula_log_lobe(specula_cos_nh(N, L, V), n)"), std::string::npos);
+  EXPECT_EQ(nh.find("specula_cos_rv"), std::string::npos);
+  const std::string overridden = model_glsl(make_model("log-normalized").with_coef(3.5));
+  EXPECT_NE(overridden.find("return 3.5 * specula_log_lobe("), std::string::npos);
+  EXPECT_EQ(overridden.find("specula_log_rv_coef"), std::string::npos);
+  const std::string bare = model_glsl(make_model("log"));
+  EXPECT_NE(bare.find("return specula_log_lobe(specula_cos_rv(N, L, V), n);"), std::string::npos);
+}
+
+TEST(Glsl, LogCoefficientCarriesTheFittedSeries) {
+  const std::string glsl = model_glsl(make_model("log-normalized"));
+  for (const double c : normalize::log_coef_chebyshev::kJ) EXPECT_NE(glsl.find(float_literal(c)), std::string::npos) << c;
+  for (const double c : normalize::log_coef_chebyshev::kK) EXPECT_NE(glsl.find(float_literal(c)), std::string::npos) << c;
+}
+
+TEST(Glsl, FloatLiteralsReadBackExactly) {
+  for (const double value : {0.0, 1.0, 2.0, -3.0, 0.1, 1e-9, 2.0229990733663571e-9, 0.19725399633894418, 1e30, -7.5e-30}) {
+    const std::string text = float_literal(value);
+    EXPECT_NE(text.find_first_of(".e"), std::string::npos) << text;  // never an int literal
+    EXPECT_EQ(std::strtof(text.c_str(), nullptr), static_cast<float>(value)) << text;
+  }
+  EXPECT_EQ(float_literal(2), "2.0");
+  EXPECT_THROW(float_literal(std::nan("")), InvalidArgument);
+}
+
+TEST(Glsl, Dialects) {
+  EXPECT_EQ(parse_dialect("webgl2"), Dialect::webgl2);
+  EXPECT_EQ(version_header(Dialect::glsl330), "#version 330 core\n");
+  EXPECT_EQ(version_header(Dialect::gles300).rfind("#version 300 es\nprecision highp float;", 0), 0u);
+  for (const Dialect d : kDialects) EXPECT_EQ(parse_dialect(to_string(d)), d);
+  try {
+    parse_dialect("glsl450");
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("'glsl450'"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace specula::gl
