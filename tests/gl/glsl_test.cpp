@@ -3,7 +3,10 @@
 // computes is compared with the C++ models on a GL context in gl_test.)
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <regex>
 
 #include "glsl_support.h"
@@ -115,6 +118,33 @@ TEST(Glsl, Dialects) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("'glsl450'"), std::string::npos);
   }
+}
+
+int run_cli(const std::string& arguments) {
+  const int status = std::system(fmt::format("'{}' glsl {} 2>/dev/null", SPECULA_CLI, arguments).c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(GlslCli, WritesAFunctionThatCompilesAfterAVersionLine) {
+  const auto file = std::filesystem::temp_directory_path() / fmt::format("specula-glsl-cli-{}.glsl", ::getpid());
+  ASSERT_EQ(run_cli(fmt::format("--model schlick-modified -p n=40 -p s=1.5 --dialect webgl2 -o '{}'", file.string())), 0);
+  const std::string text = testing::read_file(file);
+  std::filesystem::remove(file);
+  EXPECT_NE(text.find("specula_brdf(N, L, V, vec4(40.0, 1.5, 0.0, 0.0))"), std::string::npos) << text;
+  const std::string shader = version_header(Dialect::webgl2) + text +
+                             "out vec4 c;\nvoid main() { c = vec4(specula_brdf(vec3(0.0, 0.0, 1.0), "
+                             "vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec4(40.0, 1.5, 0.0, 0.0))); }\n";
+  const auto check = testing::validate_glsl(shader, "frag");
+  EXPECT_TRUE(check.ok) << check.log;
+}
+
+TEST(GlslCli, BadInputExitsWith2AndWritesNothing) {
+  const auto file = std::filesystem::temp_directory_path() / fmt::format("specula-glsl-bad-{}.glsl", ::getpid());
+  EXPECT_EQ(run_cli(fmt::format("--model log --dialect glsl450 -o '{}'", file.string())), 2);
+  EXPECT_EQ(run_cli(fmt::format("--model no-such-model -o '{}'", file.string())), 2);
+  EXPECT_EQ(run_cli(fmt::format("--model ward --form nh -o '{}'", file.string())), 2);
+  EXPECT_EQ(run_cli(fmt::format("--model log -p n=-1 -o '{}'", file.string())), 2);
+  EXPECT_FALSE(std::filesystem::exists(file));
 }
 
 }  // namespace
