@@ -126,7 +126,11 @@ std::string Context::figure(const std::string& name, const std::string& body, co
 std::string Context::svg_figure(const std::string& name, const std::string& svg, const std::string& caption,
                                 const std::string& command, const std::string& data_links) {
   write(name + ".svg", svg);
-  return figure(name, svg, caption, command,
+  // Inline SVG in HTML needs no namespace declaration: the page holds no URL at all.
+  std::string inline_svg = svg;
+  const std::string xmlns = " xmlns=\"http://www.w3.org/2000/svg\"";
+  if (const auto at = inline_svg.find(xmlns); at != std::string::npos) inline_svg.erase(at, xmlns.size());
+  return figure(name, inline_svg, caption, command,
                 data_links + (data_links.empty() ? "" : ", ") + fmt::format("<a href=\"{0}.svg\">{0}.svg</a>", name));
 }
 
