@@ -87,7 +87,7 @@ TEST_F(ReportPage, RunsWithProgressPerSection) {
 
 TEST_F(ReportPage, HoldsEverySectionAndFigureWithItsFiles) {
   const auto sections = ids_of(html(), "section");
-  for (const char* id : {"claims", "lobes", "normalization"}) EXPECT_TRUE(sections.contains(id)) << id;
+  for (const char* id : {"claims", "lobes", "normalization", "shader"}) EXPECT_TRUE(sections.contains(id)) << id;
   const auto figures = ids_of(html(), "figure");
   for (const char* id : {"fig2-lobes", "fig3-relative-error", "fig4-absolute-error", "fig8-pareto-front", "fig9-delta"}) {
     EXPECT_TRUE(figures.contains(id)) << id;
