@@ -60,6 +60,7 @@ void add_check_command(CLI::App& app);
 void add_error_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 void add_glsl_command(CLI::App& app);
 
 /// Metadata of a model for JSON output: id, parameter values, form.

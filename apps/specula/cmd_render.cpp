@@ -1,5 +1,4 @@
 // specula render: an image of a sphere or an OBJ mesh shaded with a model (the paper's Figs. 10-11).
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -8,6 +7,7 @@
 #include <tbb/info.h>
 
 #include "cli.h"
+#include "render_options.h"
 #include "specula/error.h"
 #include "specula/render/image_io.h"
 #include "specula/render/render.h"
@@ -29,28 +29,6 @@ struct RenderOptions {
   bool verbose = false;
 };
 
-int side_of(std::string_view size, std::string_view text) {
-  int value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
-    throw InvalidArgument(fmt::format("malformed --size '{}': expected WIDTHxHEIGHT, e.g. 512x512", size));
-  return value;
-}
-
-render::RenderSettings settings_of(std::string_view size) {
-  const std::size_t x = size.find('x');
-  if (x == std::string_view::npos)
-    throw InvalidArgument(fmt::format("malformed --size '{}': expected WIDTHxHEIGHT, e.g. 512x512", size));
-  return {side_of(size, size.substr(0, x)), side_of(size, size.substr(x + 1))};
-}
-
-render::Rgb colour_of(std::string_view option, const std::string& text, const render::Rgb& fallback) {
-  if (text.empty()) return fallback;
-  const std::vector<double> c = option_values(option, text);
-  if (c.size() != 3) throw InvalidArgument(fmt::format("{} '{}': expected r,g,b", option, text));
-  return {c[0], c[1], c[2]};
-}
-
 render::Scene scene_of(const RenderOptions& o) {
   render::Scene scene = render::default_scene(o.model.make());
   if (o.scene != "sphere") {
@@ -65,10 +43,6 @@ render::Scene scene_of(const RenderOptions& o) {
   m.specular = colour_of("--specular", o.specular, m.specular);
   m.ambient = colour_of("--ambient", o.ambient, m.ambient);
   return scene;
-}
-
-std::string rgb_text(const render::Rgb& c) {
-  return fmt::format("{},{},{}", io::format_number(c.r), io::format_number(c.g), io::format_number(c.b));
 }
 
 render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o, bool with_display) {

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   specula::cli::add_error_command(app);
   specula::cli::add_fit_command(app);
   specula::cli::add_render_command(app);
+  specula::cli::add_compare_command(app);
   specula::cli::add_glsl_command(app);
   specula::cli::add_report_command(app);
   try {

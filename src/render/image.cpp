@@ -8,11 +8,18 @@
 #include "specula/error.h"
 
 namespace specula::render {
+namespace {
 
-Image::Image(int width, int height) : width_(width), height_(height) {
+void check_image_size(int width, int height) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
     throw InvalidArgument(fmt::format("image size {}x{} is invalid: width and height must be in [1, {}]",
                                       width, height, kMaxImageSide));
+}
+
+}  // namespace
+
+Image::Image(int width, int height) : width_(width), height_(height) {
+  check_image_size(width, height);
   samples_.resize(3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
 }
 
@@ -74,6 +81,28 @@ std::vector<std::uint8_t> to_srgb8(const Image& image, const Display& display) {
     for (std::size_t i = y * row; i < (y + 1) * row; ++i) bytes[i] = exposed_to_srgb8(samples[i] * scale, display.tone_map);
   });
   return bytes;
+}
+
+Srgb8Image::Srgb8Image(int width, int height, Srgb8 fill) : width_(width), height_(height) {
+  check_image_size(width, height);
+  bytes_.resize(3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (std::size_t i = 0; i < bytes_.size(); i += 3) {
+    bytes_[i] = fill.r;
+    bytes_[i + 1] = fill.g;
+    bytes_[i + 2] = fill.b;
+  }
+}
+
+Srgb8 Srgb8Image::at(int x, int y) const noexcept {
+  const std::uint8_t* p = &bytes_[3 * (static_cast<std::size_t>(y) * width_ + x)];
+  return {p[0], p[1], p[2]};
+}
+
+void Srgb8Image::set(int x, int y, Srgb8 colour) noexcept {
+  std::uint8_t* p = &bytes_[3 * (static_cast<std::size_t>(y) * width_ + x)];
+  p[0] = colour.r;
+  p[1] = colour.g;
+  p[2] = colour.b;
 }
 
 }  // namespace specula::render

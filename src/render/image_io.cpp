@@ -131,12 +131,11 @@ struct PngReader {
   ~PngReader() { png_destroy_read_struct(&png, &info, nullptr); }
 };
 
-std::string encode_png(const Image& image, const Display& display, const Metadata& metadata) {
-  std::vector<std::uint8_t> pixels = to_srgb8(image, display);
-  std::vector<png_bytep> rows = row_pointers(pixels, static_cast<std::size_t>(image.height()));
+// `pixels`: 8-bit r, g, b, row-major.
+std::string encode_png(std::vector<std::uint8_t> pixels, int width, int height, const Metadata& metadata) {
+  std::vector<png_bytep> rows = row_pointers(pixels, static_cast<std::size_t>(height));
   std::vector<png_text> texts = png_texts(metadata);
-  const PngImage source{static_cast<png_uint_32>(image.width()), static_cast<png_uint_32>(image.height()),
-                        rows.data()};
+  const PngImage source{static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), rows.data()};
   std::string out;
   PngWriter writer;
   if (!writer.info || !encode_rows(writer.png, writer.info, source, texts, &out))
@@ -275,7 +274,12 @@ ExrPixel parse_exr_pixel(std::string_view text) {
 
 void write_png(const std::filesystem::path& path, const Image& image, const Display& display,
                const Metadata& metadata) {
-  io::write_file_atomically(path, encode_png(image, display, metadata));
+  io::write_file_atomically(path, encode_png(to_srgb8(image, display), image.width(), image.height(), metadata));
+}
+
+void write_png(const std::filesystem::path& path, const Srgb8Image& image, const Metadata& metadata) {
+  const auto bytes = image.bytes();
+  io::write_file_atomically(path, encode_png({bytes.begin(), bytes.end()}, image.width(), image.height(), metadata));
 }
 
 void write_exr(const std::filesystem::path& path, const Image& image, ExrPixel pixel, const Metadata& metadata) {

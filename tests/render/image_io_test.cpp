@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -86,6 +87,28 @@ TEST(Png, StoresTheDisplayTransformedCodes) {
   for (std::size_t i = 0; i < codes.size(); ++i)
     EXPECT_EQ(std::lround(255 * srgb_encode(read.image.samples()[i])), codes[i]) << i;
   EXPECT_THAT(read.metadata, IsEmpty());
+}
+
+TEST(Png, StoresAnSrgb8ImageCodeForCodeWithItsMetadata) {
+  TempDir dir;
+  Srgb8Image image(7, 5, {10, 200, 30});
+  image.set(6, 4, {255, 0, 128});
+  image.set(0, 0, {0, 1, 2});
+  write_png(dir / "a.png", image, kMetadata);
+  const ImageFile read = read_png(dir / "a.png");
+  ASSERT_EQ(read.image.width(), 7);
+  ASSERT_EQ(read.image.height(), 5);
+  const auto code = [&](int x, int y) {
+    const Rgb v = read.image.at(x, y);
+    const auto c = [](double linear) { return std::lround(255 * srgb_encode(linear)); };
+    return std::array<long, 3>{c(v.r), c(v.g), c(v.b)};
+  };
+  EXPECT_EQ(code(6, 4), (std::array<long, 3>{255, 0, 128}));
+  EXPECT_EQ(code(0, 0), (std::array<long, 3>{0, 1, 2}));
+  EXPECT_EQ(code(3, 2), (std::array<long, 3>{10, 200, 30}));
+  EXPECT_EQ(get(read.metadata, "lights"), get(kMetadata, "lights"));
+  EXPECT_THROW(write_png(dir / "missing/a.png", image), InvalidArgument);
+  EXPECT_THAT(dir.listing(), ElementsAre("a.png"));
 }
 
 TEST(Png, KeepsNonAsciiValuesAsInternationalText) {

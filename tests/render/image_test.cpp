@@ -38,6 +38,18 @@ TEST(Image, RejectsSizesOutsideOneToTheMaximum) {
   EXPECT_NO_THROW(Image(1, 1));
 }
 
+TEST(Srgb8Image, IsFilledAndStoresBytesRowMajorFromTheTop) {
+  Srgb8Image image(3, 2, {1, 2, 3});
+  EXPECT_EQ(image.bytes().size(), 18u);
+  EXPECT_EQ(image.at(1, 1), (Srgb8{1, 2, 3}));
+  image.set(2, 1, {40, 50, 60});
+  EXPECT_EQ(image.at(2, 1), (Srgb8{40, 50, 60}));
+  EXPECT_EQ(image.bytes()[15], 40);  // 3·(1·3 + 2)
+  EXPECT_EQ(image.bytes()[14], 3);
+  EXPECT_THROW(Srgb8Image(0, 1), InvalidArgument);
+  EXPECT_THROW(Srgb8Image(1, kMaxImageSide + 1), InvalidArgument);
+}
+
 TEST(Srgb, MatchesTheStandardCurveAtKnownPoints) {
   EXPECT_EQ(srgb_encode(0), 0);
   EXPECT_NEAR(srgb_encode(1), 1, 1e-15);

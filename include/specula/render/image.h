@@ -71,4 +71,31 @@ std::uint8_t to_srgb8(double linear, const Display& display) noexcept;
 /// Every sample of `image` through to_srgb8: r, g, b bytes, row-major, row 0 at the top.
 std::vector<std::uint8_t> to_srgb8(const Image& image, const Display& display);
 
+/// An 8-bit sRGB colour: what a display shows, no longer radiance.
+struct Srgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  friend constexpr bool operator==(const Srgb8&, const Srgb8&) = default;
+};
+
+/// Row-major 8-bit sRGB pixels, row 0 at the top: a picture composed for display (e.g. a
+/// comparison panel), written as PNG as it is.
+class Srgb8Image {
+ public:
+  /// Every pixel `fill`. Throws InvalidArgument unless 1 ≤ width, height ≤ kMaxImageSide.
+  Srgb8Image(int width, int height, Srgb8 fill = {});
+
+  int width() const noexcept { return width_; }
+  int height() const noexcept { return height_; }
+  Srgb8 at(int x, int y) const noexcept;
+  void set(int x, int y, Srgb8 colour) noexcept;
+  /// r, g, b of pixel (x, y) at 3·(y·width + x).
+  std::span<std::uint8_t> bytes() noexcept { return bytes_; }
+  std::span<const std::uint8_t> bytes() const noexcept { return bytes_; }
+
+ private:
+  int width_;
+  int height_;
+  std::vector<std::uint8_t> bytes_;
+};
+
 }  // namespace specula::render

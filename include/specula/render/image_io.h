@@ -25,6 +25,8 @@ ExrPixel parse_exr_pixel(std::string_view text);
 /// the value is not ASCII).
 void write_png(const std::filesystem::path& path, const Image& image, const Display& display,
                const Metadata& metadata = {});
+/// 8-bit sRGB pixels as they are (e.g. a composed comparison panel), with metadata as above.
+void write_png(const std::filesystem::path& path, const Srgb8Image& image, const Metadata& metadata = {});
 
 /// The linear samples as they are (no display transform), one string attribute per entry.
 void write_exr(const std::filesystem::path& path, const Image& image, ExrPixel pixel = ExrPixel::half,
