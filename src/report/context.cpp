@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
+#include "specula/error.h"
 #include "specula/io/table.h"
 
 namespace specula::report {
@@ -61,6 +64,14 @@ std::string html_escape(std::string_view text) {
     }
   }
   return out;
+}
+
+std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidArgument(fmt::format("cannot read '{}'", path.string()));
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
 }
 
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,

@@ -69,6 +69,7 @@ void write_report(const Options& options) {
   sections.push_back(lobes_section(context));
   sections.push_back(normalization_section(context));
   sections.push_back(shader_section(context));
+  sections.push_back(differences_section(context));
   sections.insert(sections.begin(), claims_section(context));
   context.progress("index.html");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,9 +1,12 @@
 #pragma once
 // The report's sections, in page order. Each computes its data with the library, writes its
 // tables and figures through the Context, and records what the claims table checks.
+#include <optional>
 #include <vector>
 
 #include "context.h"
+#include "specula/models/model.h"
+#include "specula/render/panel.h"
 
 namespace specula::report {
 
@@ -20,6 +23,13 @@ Section energy_section(Context& context);        ///< albedo ρ(θ_i), conservat
 Section fitted_norms_section(Context& context);  ///< exact vs fitted k; fits where no closed form
 Section cost_section(Context& context);          ///< evaluation cost against accuracy
 Section differences_section(Context& context);   ///< log lobes against Blinn-Phong, as images
+
+/// The default comparison sphere (render::default_scene) shaded with `model`, size × size pixels.
+render::Image sphere(const Model& model, int size);
+/// Composes the panels (render::compose_comparison), writes name.png and returns its <figure>.
+std::string panel_figure(Context& context, const std::string& name, const std::vector<render::LabelledImage>& panels,
+                         const std::optional<render::HeatMaps>& heat_maps, const std::string& caption,
+                         const std::string& command);
 
 /// Each claim of the paper with specula's verdict, from context.findings (runs last, shown first).
 Section claims_section(const Context& context);

@@ -4,6 +4,9 @@
 
 #include "sections.h"
 #include "specula/gl/glsl.h"
+#include "specula/render/image_io.h"
+#include "specula/render/panel.h"
+#include "specula/render/render.h"
 #include "specula/normalize/closed_form.h"
 #include "specula/normalize/log_coef_float.h"
 
@@ -40,9 +43,43 @@ std::string fig10(Context& context) {
 
 }  // namespace
 
+render::Image sphere(const Model& model, int size) {
+  return render::render_cpu(render::default_scene(model), {size, size});
+}
+
+std::string panel_figure(Context& context, const std::string& name, const std::vector<render::LabelledImage>& panels,
+                         const std::optional<render::HeatMaps>& heat_maps, const std::string& caption,
+                         const std::string& command) {
+  const render::ComparisonPanel panel = render::compose_comparison(panels, {}, {}, heat_maps);
+  const auto path = context.dir() / (name + ".png");
+  render::write_png(path, panel.image, {{"Software", "specula report"}, {"figure", name}});
+  return context.png_figure(name, read_bytes(path), caption, command);
+}
+
+namespace {
+
+std::string fig11(Context& context) {
+  const int size = context.quick() ? 160 : 384;
+  constexpr double n = 50;
+  std::vector<render::LabelledImage> panels;
+  for (const char* id : {"log-normalized", "log", "schlick"})
+    panels.push_back({sphere(make_model(id, {{"n", n}}), size), fmt::format("{}  n = {:g}", id, n)});
+  return "<h3 id=\"fig11\">Fig. 11: the spheres</h3>\n" +
+         panel_figure(context, "fig11-spheres", panels, std::nullopt,
+                      fmt::format("Local illumination as in the paper — ambient + Lambert diffuse + the specular lobe "
+                                  "in rv form, one directional light — rendered by specula's CPU renderer ({0}×{0} per "
+                                  "sphere, linear radiance, sRGB). The normalized lobe (left) reflects coef({1:g}) = "
+                                  "{2:.4g} times more energy in its highlight than the bare F<sub>log</sub> (middle); "
+                                  "Schlick's lobe (right) spreads it in a long tail.",
+                                  size, n, normalize::log_rv(n)),
+                      "specula compare --models log-normalized,log,schlick -p n=50 --out fig11.png");
+}
+
+}  // namespace
+
 Section shader_section(Context& context) {
   context.progress("Figs. 10-11: the shader and the spheres");
-  return {"shader", "Figs. 10–11: the shader and the spheres", fig10(context)};
+  return {"shader", "Figs. 10–11: the shader and the spheres", fig10(context) + fig11(context)};
 }
 
 }  // namespace specula::report

@@ -87,12 +87,19 @@ TEST_F(ReportPage, RunsWithProgressPerSection) {
 
 TEST_F(ReportPage, HoldsEverySectionAndFigureWithItsFiles) {
   const auto sections = ids_of(html(), "section");
-  for (const char* id : {"claims", "lobes", "normalization", "shader"}) EXPECT_TRUE(sections.contains(id)) << id;
+  for (const char* id : {"claims", "lobes", "normalization", "shader", "differences"}) EXPECT_TRUE(sections.contains(id)) << id;
   const auto figures = ids_of(html(), "figure");
   for (const char* id : {"fig2-lobes", "fig3-relative-error", "fig4-absolute-error", "fig8-pareto-front", "fig9-delta"}) {
     EXPECT_TRUE(figures.contains(id)) << id;
     EXPECT_TRUE(fs::exists(out() / (std::string(id) + ".svg"))) << id;
   }
+  for (const char* id : {"fig11-spheres", "differences-n5", "differences-n100"}) {
+    EXPECT_TRUE(figures.contains(id)) << id;
+    const render::Image png = render::read_png(out() / (std::string(id) + ".png")).image;
+    EXPECT_GT(png.width(), png.height()) << id;  // panels side by side
+  }
+  EXPECT_TRUE(fs::exists(out() / "fig10-log-normalized.glsl"));
+  EXPECT_NE(html().find("float specula_log_rv_coef(float n)"), std::string::npos);
   for (const auto& figure : figures) {
     const auto at = html().find(fmt::format("<figure id=\"{}\"", figure));
     const auto end = html().find("</figure>", at);
