@@ -22,6 +22,7 @@ table { border-collapse: collapse; font-variant-numeric: tabular-nums; margin: 1
 th, td { padding: .2rem .7rem; text-align: right; border-bottom: 1px solid #eee; vertical-align: top; }
 th { background: #f4f4f4; } td.ok { color: #11691d; } td.bad { color: #a4161a; }
 table.claims td, table.claims th, table.text td { text-align: left; }
+table.models td:first-child { text-align: left; white-space: nowrap; } table.verdicts td:last-child { text-align: left; min-width: 17rem; }
 code, pre { font: 13px/1.4 ui-monospace, monospace; background: #f6f6f6; }
 pre { padding: .6rem; overflow-x: auto; }
 figure { margin: 1.5rem 0; } figure svg, figure img { max-width: 100%; height: auto; }
@@ -69,6 +70,9 @@ void write_report(const Options& options) {
   sections.push_back(lobes_section(context));
   sections.push_back(normalization_section(context));
   sections.push_back(shader_section(context));
+  sections.push_back(energy_section(context));
+  sections.push_back(fitted_norms_section(context));
+  sections.push_back(cost_section(context));
   sections.push_back(differences_section(context));
   sections.insert(sections.begin(), claims_section(context));
   context.progress("index.html");

@@ -1,0 +1,227 @@
+// Beyond the paper: what a model costs to evaluate on the machine writing the report, next to how
+// far its lobe is from cⁿ (MATH.md §3) — the trade the paper makes when it replaces a power by a
+// logarithm pair.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <optional>
+#include <random>
+
+#include "sections.h"
+#include "specula/analysis/error.h"
+#include "specula/brdf/directions.h"
+#include "specula/error.h"
+#include "specula/models/model.h"
+#include "specula/report/plot.h"
+
+namespace specula::report {
+namespace {
+
+constexpr std::size_t kPairs = 4096;
+constexpr int kTrials = 5;  // the fastest trial is reported: other work on the machine only slows trials down
+
+struct Pair {
+  Vec3 l, v;
+};
+
+/// L uniform over the hemisphere; V at an angle (π/2)·x² from the mirror direction, x uniform —
+/// half the pairs within 22.5° of it, as shading evaluates a specular lobe around its highlight
+/// (bench/lobes_bench.cpp's "peaked" cosines). V below the horizon is mirrored above it.
+std::vector<Pair> direction_pairs() {
+  std::mt19937_64 rng(20231105u);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const Vec3 n{0, 0, 1};
+  std::vector<Pair> pairs;
+  for (std::size_t i = 0; i < kPairs; ++i) {
+    const Vec3 l = from_spherical(std::acos(uniform(rng)), 2 * std::numbers::pi * uniform(rng));
+    const Vec3 r = reflect(l, n);
+    const double x = uniform(rng), away = std::numbers::pi / 2 * x * x, around = 2 * std::numbers::pi * uniform(rng);
+    const Vec3 t = normalized(std::abs(r.z) < 0.9 ? cross(r, n) : cross(r, Vec3{1, 0, 0}));
+    const Vec3 b = cross(r, t);
+    Vec3 v = r * std::cos(away) + (t * std::cos(around) + b * std::sin(around)) * std::sin(away);
+    v.z = std::abs(v.z);
+    pairs.push_back({l, normalized(v)});
+  }
+  return pairs;
+}
+
+/// Makes a value observable so that the loop computing it cannot be dropped (the empty asm of
+/// benchmark::DoNotOptimize).
+void keep(double value) { asm volatile("" : : "r,m"(value) : "memory"); }
+
+/// ns per f(N, L, V) over one trial: as many passes over the pairs as fill `trial_ns`.
+double time_trial(const Model& model, const std::vector<Pair>& pairs, double trial_ns) {
+  using Clock = std::chrono::steady_clock;
+  const Vec3 n{0, 0, 1};
+  double sum = 0, elapsed = 0;
+  std::size_t evaluations = 0;
+  const auto start = Clock::now();
+  do {
+    for (const Pair& p : pairs) sum += model(n, p.l, p.v);
+    evaluations += pairs.size();
+    elapsed = std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+  } while (elapsed < trial_ns);
+  keep(sum);
+  return elapsed / static_cast<double>(evaluations);
+}
+
+struct Cost {
+  Model model;
+  double ns = INFINITY;
+  std::optional<double> max_abs_error;  ///< the lobe's against cⁿ at the same n (lobe models)
+};
+
+/// Every model's fastest of kTrials trials. The trials go round the models in turn, after an
+/// untimed warm-up round, so that a disturbance from other work on the machine hits one trial
+/// of several models rather than every trial of one.
+void time_models(std::vector<Cost>& costs, double trial_ns) {
+  const std::vector<Pair> pairs = direction_pairs();
+  for (auto& c : costs) time_trial(c.model, pairs, trial_ns / 4);
+  for (int trial = 0; trial < kTrials; ++trial)
+    for (auto& c : costs) c.ns = std::min(c.ns, time_trial(c.model, pairs, trial_ns));
+}
+
+std::vector<Cost> measure_costs(const Context& context) {
+  std::vector<Cost> costs;
+  for (const auto& info : models()) {
+    Cost c{make_model(info.id), INFINITY, std::nullopt};
+    if (c.model.is_lobe())
+      c.max_abs_error = analysis::approximation_error(c.model.lobe(), lobes::Power<>{c.model.param("n")}).max_abs;
+    costs.push_back(std::move(c));
+  }
+  time_models(costs, (context.quick() ? 1e6 : 20e6) / kTrials);
+  return costs;
+}
+
+/// Models sharing a lobe and a form differ only in k: one point each, labelled with every id.
+struct Point {
+  std::string family;
+  Form form;
+  std::vector<std::string> ids;
+  double error = 0;
+  std::vector<double> ns;
+};
+
+std::vector<Point> points_by_lobe(const std::vector<Cost>& costs) {
+  std::vector<Point> points;
+  for (const auto& c : costs) {
+    if (!c.max_abs_error) continue;
+    const std::string family = lobes::family_name(c.model.lobe());
+    const Form form = c.model.form();
+    auto same = std::find_if(points.begin(), points.end(), [&](const Point& p) {
+      return p.family == family && p.form == form && p.error == *c.max_abs_error;
+    });
+    if (same == points.end()) same = points.insert(points.end(), Point{family, form, {}, *c.max_abs_error, {}});
+    same->ids.emplace_back(c.model.id());
+    same->ns.push_back(c.ns);
+  }
+  return points;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  return values.size() % 2 ? values[mid] : (values[mid - 1] + values[mid]) / 2;
+}
+
+std::string join(const std::vector<std::string>& ids) {
+  std::string out;
+  for (const auto& id : ids) out += (out.empty() ? "" : ", ") + id;
+  return out;
+}
+
+const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
+  const auto it = std::find_if(costs.begin(), costs.end(), [&](const Cost& c) { return c.model.id() == id; });
+  if (it == costs.end()) throw InvalidArgument(fmt::format("cost: no model '{}'", id));
+  return *it;
+}
+
+Chart cost_chart(const std::vector<Cost>& costs) {
+  Chart chart{"Accuracy against cost: lobes at n = 20",
+              {"cost (ns per evaluation of f(N, L, V))", Scale::linear, 0, std::nullopt},
+              {"max |F − cⁿ| (the lobe against Phong's)", Scale::log, std::nullopt, std::nullopt}, {}};
+  double y_lo = INFINITY, y_hi = 0;
+  for (const auto& p : points_by_lobe(costs)) {
+    if (!(p.error > 0)) continue;  // cⁿ itself: error 0, drawn as the vertical line below
+    chart.series.push_back({"", model_colour(p.ids[0]), {median(p.ns)}, {p.error}, Stroke::none, true, {join(p.ids)}});
+    y_lo = std::min(y_lo, p.error);
+    y_hi = std::max(y_hi, p.error);
+  }
+  chart.y.min = std::pow(10, std::floor(std::log10(y_lo)));
+  chart.y.max = std::pow(10, std::ceil(std::log10(y_hi)));
+  const double phong = cost_of(costs, "phong").ns;
+  chart.series.push_back({"cⁿ itself (phong): exact, at this cost", model_colour("phong"), {phong, phong},
+                          {*chart.y.min, *chart.y.max}, Stroke::dashed});
+  double slowest = 0;
+  for (const auto& c : costs)
+    if (c.model.is_lobe()) slowest = std::max(slowest, c.ns);
+  chart.x.max = std::ceil(slowest * 1.3 / 5) * 5;  // room for the labels right of the points
+  chart.legend = Legend::bottom_right;
+  chart.width = 720;
+  chart.height = 440;
+  return chart;
+}
+
+std::string cost_table(const std::vector<Cost>& costs) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& c : costs)
+    rows.push_back({std::string(c.model.id()), to_string(c.model.info().kind),
+                    c.model.is_lobe() ? to_string(c.model.form()) : "—", show(c.ns, 3),
+                    c.max_abs_error ? show(*c.max_abs_error, 4) : "—"});
+  return html_table({"model", "kind", "form", "ns per f(N, L, V)", "max |F − cⁿ| at n = 20"}, rows, "models");
+}
+
+DataTable cost_data(const std::vector<Cost>& costs) {
+  DataTable table{"cost", {"model", "kind", "ns_per_eval", "max_abs_error_vs_power"}, {}};
+  for (const auto& c : costs)
+    table.rows.push_back({std::string(c.model.id()), std::string(to_string(c.model.info().kind)), c.ns,
+                          c.max_abs_error ? *c.max_abs_error : NAN});
+  return table;
+}
+
+/// Each lobe's time against Phong's cⁿ, in words.
+std::string relative_costs(const std::vector<Cost>& costs) {
+  const double phong = cost_of(costs, "phong").ns;
+  std::string ratios;
+  for (const char* id : {"log-normalized", "schlick-normalized", "schlick-modified", "gauss", "blinn-phong-normalized"})
+    ratios += fmt::format("{}{} {}×", ratios.empty() ? "" : ", ", id, show(cost_of(costs, id).ns / phong, 2));
+  const std::vector<Point> points = points_by_lobe(costs);
+  const Point* cheapest = nullptr;
+  const Point* closest = nullptr;  // the most accurate lobe that is not cⁿ itself
+  for (const auto& p : points) {
+    if (!cheapest || median(p.ns) < median(cheapest->ns)) cheapest = &p;
+    if (p.error > 0 && (!closest || p.error < closest->error)) closest = &p;
+  }
+  return fmt::format("<p>Against phong's cⁿ ({} ns here): {}. The cheapest lobe is {}'s ({}; max |F − cⁿ| = {}); "
+                     "the closest to cⁿ is {}'s ({}), at {}× phong's time.</p>\n",
+                     show(phong, 3), ratios, cheapest->family, join(cheapest->ids), show(cheapest->error, 3),
+                     closest->family, show(closest->error, 3), show(median(closest->ns) / phong, 2));
+}
+
+}  // namespace
+
+Section cost_section(Context& context) {
+  context.progress("Cost: evaluation time against accuracy");
+  const std::vector<Cost> costs = measure_costs(context);
+  const std::string links = context.save(cost_data(costs));
+  const std::string html =
+      fmt::format("<p>A lobe is chosen for speed as much as for shape. Each model's f(N, L, V) is timed through "
+                  "specula's model catalogue (one call per value, as a shader or a renderer calls it) over {} fixed "
+                  "pseudo-random direction pairs — L uniform over the hemisphere, V mostly near the mirror "
+                  "direction — repeated for {} ms per model, fastest of {} trials.</p>\n",
+                  kPairs, context.quick() ? 1 : 20, kTrials) +
+      context.svg_figure(
+          "cost-accuracy", to_svg(cost_chart(costs)),
+          "Timings are of the machine that wrote this report, at the time it wrote it (single thread, double "
+          "precision, registry dispatch included): compare them with each other, not with another machine. One "
+          "point per lobe; models that share a lobe differ only in k and are labelled together (their times in the "
+          "table). The error is each lobe's largest |F − cⁿ| over c ∈ [0, 1] at n = 20, found exactly (MATH.md §3). "
+          "Full BRDFs have no cⁿ to compare with: their times are in the table.",
+          "specula error --model log --reference phong --n 20 (and every lobe); timings: this report only", links) +
+      relative_costs(costs) + cost_table(costs);
+  return {"cost", "Beyond the paper: evaluation cost against accuracy", html};
+}
+
+}  // namespace specula::report
