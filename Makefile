@@ -22,7 +22,10 @@ report: deps
 	@cmake --build --preset release --target specula_cli
 	@build/release/specula report --out report
 
+# The lobe benchmark (scalar libm against SIMD exact and fast, with the machine's limits; about a
+# minute), then the Google Benchmark timings of the library's other paths.
 bench: build
+	@build/release/bench/specula_lobe_bench
 	@build/release/bench/specula_bench
 
 clean:

@@ -62,6 +62,7 @@ void add_fit_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_glsl_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 /// Metadata of a model for JSON output: id, parameter values, form.
 std::vector<std::pair<std::string, std::string>> model_meta(const Model& m);

@@ -1,12 +1,16 @@
 // specula::expr evaluation: a stack machine over the postfix nodes, one value per slot for
 // evaluate() and one chunk of rows per slot for evaluate_batch(). Both apply the same functions,
-// so they agree bit for bit.
+// so they agree bit for bit: evaluate_batch runs the correctly rounded operations (+ − × ÷ √,
+// |·|, negation, min, max) on SIMD vectors (simd/columns.h), and the library functions (log, exp,
+// pow, …) through libm value by value, as evaluate() does.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 
 #include "specula/expr/expr.h"
+#include "specula/simd/columns.h"
 
 namespace specula::expr {
 namespace {
@@ -58,6 +62,22 @@ double run(const Expression& e, std::span<const double> variables, double* stack
   return stack[0];
 }
 
+// The operations that are correctly rounded (bit-identical whatever the vector width).
+std::optional<simd::ColumnOp> column_op(Op op) {
+  switch (op) {
+    case Op::add: return simd::ColumnOp::add;
+    case Op::sub: return simd::ColumnOp::sub;
+    case Op::mul: return simd::ColumnOp::mul;
+    case Op::div: return simd::ColumnOp::div;
+    case Op::min: return simd::ColumnOp::min;
+    case Op::max: return simd::ColumnOp::max;
+    case Op::neg: return simd::ColumnOp::neg;
+    case Op::sqrt: return simd::ColumnOp::sqrt;
+    case Op::abs: return simd::ColumnOp::abs;
+    default: return std::nullopt;
+  }
+}
+
 // Evaluates rows [first, first + n) into out; slot k of the stack is stack[k * kChunk, …).
 void run_chunk(const Expression& e, std::span<const std::span<const double>> columns,
                std::size_t first, std::size_t n, double* stack, double* out) {
@@ -69,6 +89,9 @@ void run_chunk(const Expression& e, std::span<const std::span<const double>> col
     } else if (node.op == Op::variable) {
       std::copy_n(columns[node.var].data() + first, n, top);
       top += kChunk;
+    } else if (const auto simd_op = column_op(node.op)) {
+      if (arity(node.op) == 2) top -= kChunk;
+      simd::apply_columns(*simd_op, top - kChunk, top, n);
     } else {
       with_function(
           node.op,

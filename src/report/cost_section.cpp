@@ -1,6 +1,8 @@
 // Beyond the paper: what a model costs to evaluate on the machine writing the report, next to how
 // far its lobe is from cⁿ (MATH.md §3) — the trade the paper makes when it replaces a power by a
-// logarithm pair.
+// logarithm pair. The chart comes from the lobe benchmark (bench/lobe_bench.h, `specula bench`):
+// each lobe through the scalar lobe (libm) and the SIMD exact and fast tiers; the table below it
+// times every model of the catalogue through the registry, one f(N, L, V) per call.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +13,7 @@
 
 #include "sections.h"
 #include "specula/analysis/error.h"
+#include "specula/bench/lobe_bench.h"
 #include "specula/brdf/directions.h"
 #include "specula/error.h"
 #include "specula/models/model.h"
@@ -138,30 +141,72 @@ const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
   return *it;
 }
 
-Chart cost_chart(const std::vector<Cost>& costs) {
-  Chart chart{"Accuracy against cost: lobes at n = 20",
-              {"cost (ns per evaluation of f(N, L, V))", Scale::linear, 0, std::nullopt},
+constexpr simd::Family kFamilies[] = {simd::Family::power, simd::Family::schlick, simd::Family::schlick_modified,
+                                      simd::Family::gauss, simd::Family::log};
+constexpr bench::Path kPaths[] = {bench::Path::scalar, bench::Path::exact, bench::Path::fast};
+
+/// The registry id whose colour a lobe family takes in every figure.
+const char* colour_id(simd::Family family) {
+  constexpr const char* ids[] = {"phong", "schlick", "schlick-modified", "gauss", "log"};
+  return ids[static_cast<int>(family)];
+}
+
+/// One point per lobe and path (float, in cache, one core): ns per evaluation against the
+/// lobe's max |F − cⁿ|, the three paths of a lobe joined; cⁿ itself (error 0) as vertical lines.
+Chart cost_chart(const bench::Result& r) {
+  Chart chart{fmt::format("Accuracy against cost: lobes at n = {}, scalar libm and SIMD ({})", r.settings.n, r.machine.target),
+              {"cost (ns per evaluation, float, in cache, one core)", Scale::log, std::nullopt, std::nullopt},
               {"max |F − cⁿ| (the lobe against Phong's)", Scale::log, std::nullopt, std::nullopt}, {}};
   double y_lo = INFINITY, y_hi = 0;
-  for (const auto& p : points_by_lobe(costs)) {
-    if (!(p.error > 0)) continue;  // cⁿ itself: error 0, drawn as the vertical line below
-    chart.series.push_back({"", model_colour(p.ids[0]), {median(p.ns)}, {p.error}, Stroke::none, true, {join(p.ids)}});
-    y_lo = std::min(y_lo, p.error);
-    y_hi = std::max(y_hi, p.error);
+  for (std::size_t i = 1; i < std::size(kFamilies); ++i) {
+    Series s{bench::family_name(kFamilies[i]), model_colour(colour_id(kFamilies[i])), {}, {}, Stroke::solid, true, {}};
+    for (const auto path : kPaths) {
+      s.x.push_back(r.at(kFamilies[i], path, true).cache_ns);
+      s.y.push_back(r.error_vs_power[i]);
+      s.point_labels.push_back(bench::to_string(path));
+    }
+    y_lo = std::min(y_lo, r.error_vs_power[i]);
+    y_hi = std::max(y_hi, r.error_vs_power[i]);
+    chart.series.push_back(std::move(s));
   }
   chart.y.min = std::pow(10, std::floor(std::log10(y_lo)));
   chart.y.max = std::pow(10, std::ceil(std::log10(y_hi)));
-  const double phong = cost_of(costs, "phong").ns;
-  chart.series.push_back({"cⁿ itself (phong): exact, at this cost", model_colour("phong"), {phong, phong},
-                          {*chart.y.min, *chart.y.max}, Stroke::dashed});
-  double slowest = 0;
-  for (const auto& c : costs)
-    if (c.model.is_lobe()) slowest = std::max(slowest, c.ns);
-  chart.x.max = std::ceil(slowest * 1.3 / 5) * 5;  // room for the labels right of the points
-  chart.legend = Legend::bottom_right;
+  for (const auto path : kPaths) {
+    const double ns = r.at(simd::Family::power, path, true).cache_ns;
+    chart.series.push_back({path == bench::Path::scalar ? "cⁿ itself (phong): exact; libm, SIMD exact, SIMD fast" : "",
+                            model_colour("phong"), {ns, ns}, {*chart.y.min, *chart.y.max}, Stroke::dashed});
+  }
+  chart.legend = Legend::bottom_left;
   chart.width = 720;
   chart.height = 440;
   return chart;
+}
+
+std::string bench_table(const bench::Result& r) {
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < std::size(kFamilies); ++i)
+    for (const auto path : kPaths) {
+      const bench::Measurement& m = r.at(kFamilies[i], path, true);
+      const double scalar = r.at(kFamilies[i], bench::Path::scalar, true).cache_ns;
+      rows.push_back({bench::family_name(kFamilies[i]), bench::to_string(path), show(m.cache_ns, 3),
+                      show(scalar / m.cache_ns, 3) + "×", show(m.evals_per_s_per_core(), 3), show(m.max_rel_error, 2),
+                      show(r.error_vs_power[i], 4)});
+    }
+  return html_table({"lobe", "path", "ns per evaluation (float)", "× scalar", "evaluations/s per core",
+                     "max relative error vs scalar double (F ≥ 10⁻³)", "max |F − cⁿ|"},
+                    rows, "cost-simd");
+}
+
+DataTable bench_data(const bench::Result& r) {
+  DataTable table{"cost-simd",
+                  {"lobe", "path", "precision", "ns_per_eval", "evals_per_s_per_core", "max_rel_error", "max_abs_error",
+                   "max_abs_error_vs_power"},
+                  {}};
+  for (const auto& m : r.rows)
+    table.rows.push_back({std::string(bench::family_name(m.family)), std::string(bench::to_string(m.path)),
+                          std::string(m.single ? "float" : "double"), m.cache_ns, m.evals_per_s_per_core(),
+                          m.max_rel_error, m.max_abs_error, r.error_vs_power[static_cast<std::size_t>(m.family)]});
+  return table;
 }
 
 std::string cost_table(const std::vector<Cost>& costs) {
@@ -204,23 +249,32 @@ std::string relative_costs(const std::vector<Cost>& costs) {
 
 Section cost_section(Context& context) {
   context.progress("Cost: evaluation time against accuracy");
+  const bench::Result simd = bench::run(bench::Settings::report(context.quick()));
   const std::vector<Cost> costs = measure_costs(context);
   const std::string links = context.save(cost_data(costs));
+  const std::string simd_links = context.save(bench_data(simd));
   const std::string html =
-      fmt::format("<p>A lobe is chosen for speed as much as for shape. Each model's f(N, L, V) is timed through "
-                  "specula's model catalogue (one call per value, as a shader or a renderer calls it) over {} fixed "
-                  "pseudo-random direction pairs — L uniform over the hemisphere, V mostly near the mirror "
-                  "direction — repeated for {} ms per model, fastest of {} trials.</p>\n",
-                  kPairs, context.quick() ? 1 : 20, kTrials) +
+      fmt::format("<p>A lobe is chosen for speed as much as for shape. The chart is specula's lobe benchmark "
+                  "(<code>specula bench</code>, docs/simd.md): every lobe at n = {} over {} fixed cosines, mostly near "
+                  "the highlight, through the scalar lobe (libm, one value per call) and through specula's SIMD batch "
+                  "functions in their exact tier (within a few ulp of the scalar double lobe) and fast tier (within "
+                  "10⁻⁴ where F ≥ 10⁻³), fastest of {} trials of {} ms.</p>\n",
+                  simd.settings.n, simd.settings.cache_bytes / sizeof(float), simd.settings.trials,
+                  1000 * simd.settings.trial_seconds) +
       context.svg_figure(
-          "cost-accuracy", to_svg(cost_chart(costs)),
-          "Timings are of the machine that wrote this report, at the time it wrote it (single thread, double "
-          "precision, registry dispatch included): compare them with each other, not with another machine. One "
-          "point per lobe; models that share a lobe differ only in k and are labelled together (their times in the "
-          "table). The error is each lobe's largest |F − cⁿ| over c ∈ [0, 1] at n = 20, found exactly (MATH.md §3). "
-          "Full BRDFs have no cⁿ to compare with: their times are in the table.",
-          "specula error --model log --reference phong --n 20 (and every lobe); timings: this report only", links) +
-      relative_costs(costs) + cost_table(costs);
+          "cost-accuracy", to_svg(cost_chart(simd)),
+          "Timings are of the machine that wrote this report, at the time it wrote it (float lanes, one core, arrays "
+          "in cache): compare them with each other, not with another machine. Each lobe's three points are the same "
+          "lobe through three paths, so they share its error: its largest |F − cⁿ| over c ∈ [0, 1], found exactly "
+          "(MATH.md §3). cⁿ itself has no error: its three costs are the dashed lines.",
+          "specula bench (the full benchmark: also double, streaming, all cores, limits)", simd_links) +
+      bench_table(simd) +
+      fmt::format("<p>Through the model catalogue instead, one call per value as a shader or a renderer calls it: "
+                  "each model's f(N, L, V) over {} fixed pseudo-random direction pairs — L uniform over the hemisphere, "
+                  "V mostly near the mirror direction — repeated for {} ms per model, fastest of {} trials (double "
+                  "precision, registry dispatch included).</p>\n",
+                  kPairs, context.quick() ? 1 : 20, kTrials) +
+      relative_costs(costs) + cost_table(costs) + "<p>" + links + "</p>\n";
   return {"cost", "Beyond the paper: evaluation cost against accuracy", html};
 }
 

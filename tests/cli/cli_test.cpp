@@ -807,6 +807,38 @@ TEST_F(CliFit, OutWritesTheFileAndNothingElse) {
 
 // ---- bad input ------------------------------------------------------------------------------
 
+TEST_F(Cli, BenchQuickJsonHoldsEveryLobeAndTier) {
+  // The figures themselves are timings of this machine: only their presence and sign are
+  // checked, and the accuracies against the bounds simd/lobes.h states.
+  const Result r = ok({"bench", "--quick", "--format", "json"});
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r;
+  EXPECT_FALSE(j["machine"]["target"].get<std::string>().empty());
+  EXPECT_GT(j["machine"]["peak_vector_fma_per_s"].get<double>(), 0);
+  EXPECT_GT(j["machine"]["copy_bytes_per_s"].get<double>(), 0);
+  for (const char* lobe : {"power", "schlick", "schlick-modified", "gauss", "log"})
+    for (const char* tier : {"scalar", "exact", "fast"}) {
+      const auto& t = j["lobes"][lobe][tier];
+      EXPECT_GT(t["evals_per_s_per_core"].get<double>(), 0) << lobe << " " << tier;
+      EXPECT_GT(t["double"]["ns_per_eval"]["stream_all_cores"].get<double>(), 0) << lobe << " " << tier;
+      const double rel = t["max_rel_error"];
+      EXPECT_LE(rel, std::string(tier) == "exact" ? 6 * 0x1p-23 : 1e-4) << lobe << " " << tier;  // ULP ≤ 5 (float)
+    }
+  EXPECT_NEAR(j["lobes"]["log"]["max_abs_error_vs_power"].get<double>(), 0.125, 1e-6);  // MATH.md §3
+  EXPECT_EQ(j["lobes"]["power"]["max_abs_error_vs_power"].get<double>(), 0);
+  EXPECT_GT(j["lobes"]["log"]["fast"]["float"]["ops_per_value"].get<double>(), 0);
+}
+
+TEST_F(Cli, BenchTableHasRatiosBaselinesAndLimits) {
+  const Result r = ok({"bench", "--quick", "--n", "50"});
+  EXPECT_THAT(r.out, HasSubstr("every lobe at n = 50"));
+  EXPECT_THAT(r.out, HasSubstr("× libm"));
+  EXPECT_THAT(r.out, HasSubstr("baselines (float, in cache, one core): cⁿ through libm"));
+  EXPECT_THAT(r.out, HasSubstr("limits: compute = ops/value"));
+  bad({"bench", "--format", "xml"});
+  bad({"bench", "--n", "0"});
+}
+
 TEST_F(Cli, UnknownModel) {
   EXPECT_THAT(bad({"normalize", "--model", "nope", "--n", "1"}).err, HasSubstr("nope"));
   EXPECT_THAT(bad({"eval", "--model", "nope", "--cos", "1"}).err, HasSubstr("nope"));

@@ -1,0 +1,91 @@
+#pragma once
+// The lobe benchmark behind `make bench`, `specula bench` and the report's cost section: for every
+// lobe, ns per evaluation through the scalar lobe (libm) and the SIMD exact and fast tiers, in
+// cache and streaming from memory, on one core and on all of them (oneTBB); the accuracy of each
+// path against the scalar double lobe and each lobe's distance from cⁿ; the machine's two limits
+// (its peak vector rate times the kernel's operations, and its streaming bandwidth) and each
+// lobe's distance from the nearer one. docs/simd.md explains how to read it.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "specula/simd/lobes.h"
+
+namespace specula::bench {
+
+/// Which implementation evaluates the lobe.
+enum class Path { scalar, exact, fast };  ///< scalar: the lobe struct per value (std::pow, log2…)
+
+const char* to_string(Path path) noexcept;
+
+struct Settings {
+  double n = 20;                          ///< every lobe's exponent
+  std::size_t cache_bytes = 4096;         ///< in-cache input array (the output is as large)
+  std::size_t stream_bytes = 256u << 20;  ///< streamed input array (the output is as large)
+  double trial_seconds = 0.02;            ///< length of one in-cache trial
+  int trials = 5;                         ///< in-cache: fastest of; streaming: fastest of ⌈trials/2⌉ passes
+  bool doubles = true;                    ///< double lanes too (float always)
+  bool streaming = true;
+  bool threaded = true;                   ///< all cores as well as one (oneTBB)
+  std::size_t accuracy_points = 1 << 15;  ///< cosines per region of the accuracy probe
+
+  static Settings full() { return {}; }
+  /// A few seconds: smaller streamed arrays, shorter and fewer trials.
+  static Settings quick();
+  /// What the report shows: in cache, one core, float and double.
+  static Settings report(bool quick);
+};
+
+/// One lobe through one path in one precision. Times are ns per evaluation per core (wall time ×
+/// cores / evaluations); NaN where not measured.
+struct Measurement {
+  simd::Family family;
+  Path path;
+  bool single = true;  ///< float lanes (else double)
+  double cache_ns = NAN, cache_threads_ns = NAN, stream_ns = NAN, stream_threads_ns = NAN;
+  double max_rel_error = 0;  ///< against the scalar double lobe, where F ≥ 1e-3 (F's peak is 1)
+  double max_abs_error = 0;  ///< against the scalar double lobe, everywhere
+  double ops_per_value = NAN;  ///< SIMD paths: the kernel's vector operations per value
+
+  double evals_per_s_per_core() const noexcept { return 1e9 / cache_ns; }
+};
+
+struct Machine {
+  std::string target;  ///< Highway's dispatched target, e.g. AVX3
+  std::size_t lanes_f32 = 0, lanes_f64 = 0;
+  int threads = 1;
+  double fma_per_s = NAN;          ///< vector FMAs per second, one core (measured)
+  double copy_bytes_per_s = NAN;   ///< streaming copy, read + written bytes, one core
+  double copy_bytes_per_s_all = NAN;  ///< the same on every core
+  double sum_bytes_per_s = NAN;    ///< streaming read-only sum, one core
+};
+
+struct Result {
+  Settings settings;
+  Machine machine;
+  std::vector<Measurement> rows;             ///< families × paths × precisions
+  std::vector<double> error_vs_power;        ///< per family (simd::Family order): max |F − cⁿ| at n
+
+  const Measurement& at(simd::Family family, Path path, bool single) const;
+  /// ns per value at the compute limit: ops per value ÷ the peak vector rate (SIMD paths).
+  double compute_limit_ns(const Measurement& m) const noexcept;
+  /// ns per value at the memory limit: bytes per value (read c, write F) ÷ copy bandwidth.
+  double memory_limit_ns(const Measurement& m, bool all_cores) const noexcept;
+};
+
+/// Runs the benchmark; `progress` is told each phase as it starts.
+Result run(const Settings& settings, const std::function<void(std::string_view)>& progress = {});
+
+/// Plain-text tables: per precision, every lobe and path with its times, ratios, errors and
+/// limits; the baselines (cⁿ through libm and through the SIMD path, Schlick's rational form).
+std::string to_table(const Result& result);
+
+/// JSON: the machine, the settings, and per lobe and path: evals_per_s_per_core (in cache,
+/// float), max_rel_error against the scalar double lobe, every time measured, the limits.
+std::string to_json(const Result& result);
+
+const char* family_name(simd::Family family) noexcept;
+
+}  // namespace specula::bench

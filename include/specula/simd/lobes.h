@@ -1,0 +1,143 @@
+#pragma once
+// SIMD batch evaluation of every lobe over arrays of cosines, float and double, with Google
+// Highway: compiled for every instruction set Highway targets (AVX-512, AVX2, SSE4, NEON, SVE…)
+// and dispatched at run time to the best one the CPU has (docs/simd.md).
+//
+// Two tiers per lobe:
+//   exact  within a few ulp of the scalar double lobe (include/specula/lobes/*.h)
+//   fast   cheaper logarithms, exponentials and reciprocals; 1e-4 relative where F ≥ 1e-3
+// Each (lobe, tier, lane type) states its bound below the way Highway states its math functions,
+// and tests/simd enforces exactly that bound against the scalar double lobe at the same (float)
+// inputs, over dense and random cosines, n ∈ [1e-3, 1e9] and the edge cases. "ulp" means
+// ε = std::numeric_limits<T>::epsilon() of the lane type (2⁻²³ float, 2⁻⁵² double), as a
+// relative error. F's peak is F(1) = 1.
+//
+// The bounds, with F the scalar double reference and F̃ the batch result (ErrorBound::allowed):
+//
+//   |F̃ − F| ≤ (rel + rel_per_ln·|ln F|)·F + abs   where F ≥ floor
+//   |F̃ − F| ≤ abs_below                           where F < floor
+//
+// The |ln F| term is the amplification of an exponent's rounding (F = e^(ln F)); only the Gauss
+// lobe's exact tier in double has it, and its scalar reference has it too (lobes/gauss.h).
+// "ULP = k" below means rel = k·ε. Measured maxima over the tests' inputs are in docs/simd.md.
+//
+//   Lobe             Tier   float                                  double
+//   power            exact  Max Error: ULP = 1                     ULP = 2
+//                           (F < 2⁻¹²⁵ float, 2⁻¹⁰²¹ double: |F̃ − F| ≤ that; F̃ = 0 there)
+//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
+//   schlick          exact  Max Error: ULP = 2                     ULP = 3
+//                    fast   Max Error: ULP = 4 (reciprocal + one Newton step)   ULP = 3 (divides)
+//   schlick-modified exact  Max Error: ULP = 5                     ULP = 6
+//                    fast   Max Error: ULP = 6                     ULP = 6
+//   gauss            exact  Max Error: ULP = 1 (F < 2⁻¹²⁵: as power)  ULP = 4 + 4·|ln F|
+//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
+//   log              exact  Max Error: ULP = 1 + 2e-14 absolute    ULP = 8 + 6e-16 absolute (the
+//                           scalar lobe's own cancellation at the cut-off c₀ is 4e-16, lobes/log.h)
+//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
+//   (rational lobes and double gauss: relative bounds hold where F ≥ the smallest normal number
+//   of the lane type; below it |F̃ − F| ≤ that number.)
+//
+// Valid Range: c any value (c ≤ 0 gives 0, c > 1 counts as 1, as the scalar lobes; subnormal c
+// included), n ∈ [1e-3, 1e9], s ∈ (0, 1e3] (schlick-modified).
+// NaN: NaN in, NaN out, except gauss, which gives 0 like its scalar lobe (it tests c > 0).
+//
+// How: the exact tier of power, gauss and log works in double lanes: for double arrays
+// c^n = 2^(n log₂ c) with log₂ c as a double-double, gauss through Highway's Acos and Exp; for
+// float arrays log₂ F in double (~1e-11) and 2^(…) in float lanes, rounded once; the log lobe in
+// its t-space cases, float arrays promoted to double (src/simd/kernels-inl.h). The fast tier uses short polynomials in the lane type; for the
+// log lobe, "a log of a log": one log₂ c to ~1 ulp, then log₂(1 + t) on the fixed range t ∈ [0, 3]
+// with a degree-5 polynomial, and for n ≥ 6 no exponent extraction at all (c > c₀ ≥ √½).
+#include <concepts>
+#include <limits>
+#include <span>
+
+#include "specula/lobes/lobes.h"
+
+namespace specula::simd {
+
+enum class Tier { exact, fast };
+
+constexpr const char* to_string(Tier tier) noexcept { return tier == Tier::exact ? "exact" : "fast"; }
+
+/// The lobe families, in lobes::Lobe's order.
+enum class Family { power, schlick, schlick_modified, gauss, log };
+
+/// A lobe with its parameters, whatever its scalar type.
+struct LobeSpec {
+  Family family = Family::power;
+  double n = 20;
+  double s = 1.25;  ///< schlick-modified only
+};
+
+LobeSpec spec_of(const lobes::Lobe& lobe) noexcept;
+
+template <std::floating_point T>
+constexpr LobeSpec spec_of(const lobes::Power<T>& l) noexcept { return {Family::power, l.n}; }
+template <std::floating_point T>
+constexpr LobeSpec spec_of(const lobes::Schlick<T>& l) noexcept { return {Family::schlick, l.n}; }
+template <std::floating_point T>
+constexpr LobeSpec spec_of(const lobes::SchlickModified<T>& l) noexcept {
+  return {Family::schlick_modified, l.n, l.s};
+}
+template <std::floating_point T>
+constexpr LobeSpec spec_of(const lobes::Gauss<T>& l) noexcept { return {Family::gauss, l.n}; }
+template <std::floating_point T>
+constexpr LobeSpec spec_of(const lobes::Log<T>& l) noexcept { return {Family::log, l.n}; }
+
+/// out[i] = F(c[i]) for i < min(c.size(), out.size()), at the tier's accuracy (bounds above).
+/// Parameters are rounded to the lane type first, as the scalar lobes of that type hold them.
+void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const float> c, std::span<float> out) noexcept;
+void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const double> c, std::span<double> out) noexcept;
+
+template <class L, std::floating_point T>
+void eval_batch(const L& lobe, Tier tier, std::span<const T> c, std::span<T> out) noexcept {
+  eval_batch(spec_of(lobe), tier, c, out);
+}
+
+/// Vector operations per value of the kernel eval_batch runs for (lobe, tier) on the current
+/// target: the kernel's count (kOps in src/simd/kernels-inl.h: one per Highway op that is one
+/// arithmetic, compare, select, logic or conversion instruction on AVX2/AVX-512; loads and stores
+/// of the arrays not counted) over its lanes. The numerator of the benchmark's compute limit.
+double ops_per_value(const LobeSpec& lobe, Tier tier, bool single_precision);
+
+/// A tier's error bound against the scalar double lobe (see the top of this file).
+struct ErrorBound {
+  double rel = 0;
+  double rel_per_ln = 0;
+  double abs = 0;
+  double floor = 0;
+  double abs_below = 0;
+
+  /// The largest |F̃ − F| allowed where the reference is F.
+  constexpr double allowed(double f, double ln_f) const noexcept {
+    return f >= floor ? (rel + rel_per_ln * (ln_f < 0 ? -ln_f : ln_f)) * f + abs : abs_below;
+  }
+};
+
+/// The bound stated above for lanes of type T.
+template <std::floating_point T>
+constexpr ErrorBound error_bound(Family family, Tier tier) noexcept {
+  constexpr double eps = std::numeric_limits<T>::epsilon();
+  constexpr bool is_float = sizeof(T) == 4;
+  constexpr double min_normal = std::numeric_limits<T>::min();
+  // c^n and 2^(…) are flushed to 0 below 2^(emin + 3) (float 2^-125, double 2^-1021).
+  constexpr double flushed = is_float ? 0x1p-125 : 0x1p-1021;
+  if (tier == Tier::fast) {
+    switch (family) {
+      case Family::schlick: return {(is_float ? 4 : 3) * eps, 0, 0, min_normal, min_normal};
+      case Family::schlick_modified: return {6 * eps, 0, 0, min_normal, min_normal};
+      default: return {1e-4, 0, 0, 1e-3, 1e-7};
+    }
+  }
+  switch (family) {
+    case Family::power: return {(is_float ? 1 : 2) * eps, 0, 0, flushed, flushed};
+    case Family::schlick: return {(is_float ? 2 : 3) * eps, 0, 0, min_normal, min_normal};
+    case Family::schlick_modified: return {(is_float ? 5 : 6) * eps, 0, 0, min_normal, min_normal};
+    case Family::gauss: return is_float ? ErrorBound{eps, 0, 0, flushed, flushed}
+                                        : ErrorBound{4 * eps, 4 * eps, 0, min_normal, min_normal};
+    case Family::log: return is_float ? ErrorBound{eps, 0, 2e-14} : ErrorBound{8 * eps, 0, 6e-16};
+  }
+  return {};
+}
+
+}  // namespace specula::simd

@@ -1,0 +1,360 @@
+// The lobe benchmark's measurements (include/specula/bench/lobe_bench.h). Timings are the fastest
+// of several trials (other work on the machine only slows a trial down) and go round the rows in
+// turn, so that a disturbance hits one trial of several rows rather than every trial of one.
+#include "specula/bench/lobe_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <span>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "specula/analysis/error.h"
+#include "specula/error.h"
+#include "specula/simd/targets.h"
+
+namespace specula::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using simd::Family;
+
+constexpr Family kFamilies[] = {Family::power, Family::schlick, Family::schlick_modified, Family::gauss, Family::log};
+constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Makes a value observable so that the loop computing it cannot be dropped.
+template <class T>
+void keep(T* data) {
+  asm volatile("" : : "r"(data) : "memory");
+}
+
+lobes::Lobe scalar_lobe(Family family, double n) {
+  switch (family) {
+    case Family::power: return lobes::Power<double>{n};
+    case Family::schlick: return lobes::Schlick<double>{n};
+    case Family::schlick_modified: return lobes::SchlickModified<double>{n};
+    case Family::gauss: return lobes::Gauss<double>{n};
+    case Family::log: return lobes::Log<double>{n};
+  }
+  throw InvalidArgument("bench: unknown lobe family");
+}
+
+/// The scalar path in lane type T: the lobe struct per value, inlined (lobes::eval_batch).
+template <class T>
+void scalar_batch(Family family, T n, std::span<const T> c, std::span<T> out) {
+  switch (family) {
+    case Family::power: return lobes::eval_batch(lobes::Power<T>{n}, c, out);
+    case Family::schlick: return lobes::eval_batch(lobes::Schlick<T>{n}, c, out);
+    case Family::schlick_modified: return lobes::eval_batch(lobes::SchlickModified<T>{n}, c, out);
+    case Family::gauss: return lobes::eval_batch(lobes::Gauss<T>{n}, c, out);
+    case Family::log: return lobes::eval_batch(lobes::Log<T>{n}, c, out);
+  }
+}
+
+/// One row's evaluation of a whole array.
+template <class T>
+struct Evaluator {
+  Family family;
+  Path path;
+  double n;
+
+  void operator()(std::span<const T> c, std::span<T> out) const {
+    if (path == Path::scalar) return scalar_batch<T>(family, T(n), c, out);
+    simd::eval_batch(simd::LobeSpec{family, double(T(n))}, path == Path::exact ? simd::Tier::exact : simd::Tier::fast,
+                     c, out);
+  }
+};
+
+/// Cosines as shading sees them near a highlight (bench/lobes_bench.cpp's "peaked"): θ = (π/2)x²,
+/// x stratified on (0, 1), shuffled with a fixed seed; the pattern repeats to fill `count`.
+template <class T>
+std::vector<T> peaked_cosines(std::size_t count) {
+  constexpr std::size_t kPattern = 4096;
+  std::vector<T> pattern(kPattern);
+  for (std::size_t i = 0; i < kPattern; ++i) {
+    const double x = (double(i) + 0.5) / double(kPattern);
+    pattern[i] = T(std::cos(std::numbers::pi / 2 * x * x));
+  }
+  std::shuffle(pattern.begin(), pattern.end(), std::mt19937(20231105u));
+  std::vector<T> c(count);
+  for (std::size_t i = 0; i < count; ++i) c[i] = pattern[i % kPattern];
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Timing
+
+/// ns per value of one in-cache trial: whole passes over `c` until `seconds` have gone by.
+template <class T>
+double cache_trial(const Evaluator<T>& eval, std::span<const T> c, std::span<T> out, double seconds) {
+  std::size_t values = 0;
+  const auto start = Clock::now();
+  double elapsed = 0;
+  do {
+    keep(c.data());
+    eval(c, out);
+    keep(out.data());
+    values += c.size();
+    elapsed = seconds_since(start);
+  } while (elapsed < seconds);
+  return elapsed * 1e9 / double(values);
+}
+
+/// ns per value per core with every thread of `arena` on its own in-cache arrays, each running
+/// `passes` passes.
+template <class T>
+double cache_threads_trial(tbb::task_arena& arena, const Evaluator<T>& eval, std::span<const T> c, std::size_t passes) {
+  const int threads = arena.max_concurrency();
+  const auto start = Clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(0, threads, [&](int) {
+      std::vector<T> in(c.begin(), c.end()), out(c.size());
+      for (std::size_t p = 0; p < passes; ++p) {
+        keep(in.data());
+        eval(in, out);
+        keep(out.data());
+      }
+    });
+  });
+  return seconds_since(start) * 1e9 * threads / (double(passes) * double(c.size()) * threads);
+}
+
+/// ns per value per core of one pass over the large arrays, on one core or split over all.
+template <class T>
+double stream_pass(tbb::task_arena* arena, const Evaluator<T>& eval, std::span<const T> c, std::span<T> out) {
+  const auto start = Clock::now();
+  if (!arena) {
+    eval(c, out);
+  } else {
+    arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.size(), 1 << 16), [&](const auto& r) {
+        eval(c.subspan(r.begin(), r.size()), out.subspan(r.begin(), r.size()));
+      });
+    });
+  }
+  keep(out.data());
+  const int cores = arena ? arena->max_concurrency() : 1;
+  return seconds_since(start) * 1e9 * cores / double(c.size());
+}
+
+template <class T>
+Evaluator<T> evaluator(const Measurement& m, double n) {
+  return {m.family, m.path, n};
+}
+
+template <class T>
+void time_in_cache(std::vector<Measurement>& rows, const Settings& s, tbb::task_arena& arena) {
+  const std::vector<T> c = peaked_cosines<T>(std::max<std::size_t>(s.cache_bytes / sizeof(T), 1));
+  std::vector<T> out(c.size());
+  for (auto& m : rows) cache_trial(evaluator<T>(m, s.n), std::span<const T>(c), std::span<T>(out), s.trial_seconds / 4);
+  for (int trial = 0; trial < s.trials; ++trial)
+    for (auto& m : rows) {
+      const double ns = cache_trial(evaluator<T>(m, s.n), std::span<const T>(c), std::span<T>(out), s.trial_seconds);
+      m.cache_ns = std::isnan(m.cache_ns) ? ns : std::min(m.cache_ns, ns);
+    }
+  if (!s.threaded) return;
+  for (int trial = 0; trial < s.trials; ++trial)
+    for (auto& m : rows) {
+      const auto passes = std::size_t(std::max(1.0, s.trial_seconds * 1e9 / (m.cache_ns * double(c.size()))));
+      const double ns = cache_threads_trial(arena, evaluator<T>(m, s.n), std::span<const T>(c), passes);
+      m.cache_threads_ns = std::isnan(m.cache_threads_ns) ? ns : std::min(m.cache_threads_ns, ns);
+    }
+}
+
+template <class T>
+void time_streaming(std::vector<Measurement>& rows, const Settings& s, tbb::task_arena& arena) {
+  const std::vector<T> c = peaked_cosines<T>(s.stream_bytes / sizeof(T));
+  std::vector<T> out(c.size());
+  const int passes = (s.trials + 1) / 2;
+  for (int pass = 0; pass < passes; ++pass)
+    for (auto& m : rows) {
+      const double one = stream_pass<T>(nullptr, evaluator<T>(m, s.n), c, out);
+      m.stream_ns = std::isnan(m.stream_ns) ? one : std::min(m.stream_ns, one);
+      if (!s.threaded) continue;
+      const double all = stream_pass<T>(&arena, evaluator<T>(m, s.n), c, out);
+      m.stream_threads_ns = std::isnan(m.stream_threads_ns) ? all : std::min(m.stream_threads_ns, all);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accuracy and the machine
+
+/// Cosines for the accuracy columns: dense in c, in t = −n log₂ c (the log lobe's variable) and in
+/// the angle, as tests/simd does (which enforces the stated bounds over many more n).
+template <class T>
+std::vector<T> accuracy_cosines(double n, std::size_t points) {
+  std::vector<T> c;
+  for (std::size_t i = 0; i <= points; ++i) {
+    const double x = double(i) / double(points);
+    c.push_back(T(x));
+    c.push_back(T(std::exp2(-4 * x / n)));
+    c.push_back(T(std::cos(std::min(std::sqrt(60 / n), std::numbers::pi / 2) * x)));
+  }
+  return c;
+}
+
+template <class T>
+void measure_accuracy(std::vector<Measurement>& rows, const Settings& s) {
+  const std::vector<T> c = accuracy_cosines<T>(double(T(s.n)), s.accuracy_points);
+  std::vector<T> out(c.size());
+  for (auto& m : rows) {
+    evaluator<T>(m, s.n)(c, out);
+    const lobes::Lobe reference = scalar_lobe(m.family, double(T(s.n)));
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double f = lobes::eval(reference, double(c[i])), error = std::abs(double(out[i]) - f);
+      m.max_abs_error = std::max(m.max_abs_error, error);
+      if (f >= 1e-3) m.max_rel_error = std::max(m.max_rel_error, error / f);
+    }
+    if (m.path != Path::scalar)
+      m.ops_per_value = simd::ops_per_value({m.family, double(T(s.n))}, m.path == Path::exact ? simd::Tier::exact : simd::Tier::fast,
+                                            sizeof(T) == 4);
+  }
+}
+
+/// Bytes per second of a streaming copy (read + written), on one core or all.
+double copy_bandwidth(tbb::task_arena* arena, std::size_t bytes, int passes) {
+  const std::vector<float> in = peaked_cosines<float>(bytes / sizeof(float));
+  std::vector<float> out(in.size());
+  double best = INFINITY;
+  for (int p = 0; p < passes; ++p) {
+    const auto start = Clock::now();
+    if (!arena) {
+      simd::stream_copy(in.data(), out.data(), in.size());
+    } else {
+      arena->execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), 1 << 16), [&](const auto& r) {
+          simd::stream_copy(in.data() + r.begin(), out.data() + r.begin(), r.size());
+        });
+      });
+    }
+    keep(out.data());
+    best = std::min(best, seconds_since(start));
+  }
+  return 2.0 * double(in.size() * sizeof(float)) / best;
+}
+
+double sum_bandwidth(std::size_t bytes, int passes) {
+  const std::vector<float> in = peaked_cosines<float>(bytes / sizeof(float));
+  double best = INFINITY;
+  for (int p = 0; p < passes; ++p) {
+    const auto start = Clock::now();
+    volatile float sink = simd::stream_sum(in.data(), in.size());
+    (void)sink;
+    best = std::min(best, seconds_since(start));
+  }
+  return double(in.size() * sizeof(float)) / best;
+}
+
+Machine measure_machine(const Settings& s, tbb::task_arena& arena) {
+  const simd::TargetInfo target = simd::current_target();
+  Machine m{target.name, target.lanes_f32, target.lanes_f64, arena.max_concurrency()};
+  for (int t = 0; t < std::max(1, s.trials); ++t)
+    m.fma_per_s = std::isnan(m.fma_per_s) ? simd::measure_fma_per_second(s.trial_seconds)
+                                          : std::max(m.fma_per_s, simd::measure_fma_per_second(s.trial_seconds));
+  if (!s.streaming) return m;
+  const int passes = (s.trials + 1) / 2;
+  m.copy_bytes_per_s = copy_bandwidth(nullptr, s.stream_bytes, passes);
+  if (s.threaded) m.copy_bytes_per_s_all = copy_bandwidth(&arena, s.stream_bytes, passes);
+  m.sum_bytes_per_s = sum_bandwidth(s.stream_bytes, passes);
+  return m;
+}
+
+std::vector<Measurement> rows_for(bool single) {
+  std::vector<Measurement> rows;
+  for (const Family family : kFamilies)
+    for (const Path path : kPaths) rows.push_back({family, path, single});
+  return rows;
+}
+
+template <class T>
+std::vector<Measurement> measure_precision(const Settings& s, tbb::task_arena& arena,
+                                           const std::function<void(std::string_view)>& progress) {
+  std::vector<Measurement> rows = rows_for(sizeof(T) == 4);
+  const char* type = sizeof(T) == 4 ? "float" : "double";
+  progress(std::string("lobes in ") + type + ": accuracy");
+  measure_accuracy<T>(rows, s);
+  progress(std::string("lobes in ") + type + ": in cache");
+  time_in_cache<T>(rows, s, arena);
+  if (s.streaming) {
+    progress(std::string("lobes in ") + type + ": streaming");
+    time_streaming<T>(rows, s, arena);
+  }
+  return rows;
+}
+
+}  // namespace
+
+const char* to_string(Path path) noexcept {
+  constexpr const char* names[] = {"scalar", "exact", "fast"};
+  return names[static_cast<int>(path)];
+}
+
+const char* family_name(Family family) noexcept {
+  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log"};
+  return names[static_cast<int>(family)];
+}
+
+Settings Settings::quick() {
+  Settings s;
+  s.stream_bytes = 16u << 20;
+  s.trial_seconds = 0.004;
+  s.trials = 3;
+  s.accuracy_points = 1 << 12;
+  return s;
+}
+
+Settings Settings::report(bool quick) {
+  Settings s = quick ? Settings::quick() : Settings::full();
+  s.streaming = false;
+  s.threaded = false;
+  if (quick) s.trials = 2;
+  return s;
+}
+
+const Measurement& Result::at(Family family, Path path, bool single) const {
+  for (const auto& m : rows)
+    if (m.family == family && m.path == path && m.single == single) return m;
+  throw InvalidArgument("bench: no such measurement");
+}
+
+double Result::compute_limit_ns(const Measurement& m) const noexcept {
+  return m.ops_per_value / machine.fma_per_s * 1e9;
+}
+
+double Result::memory_limit_ns(const Measurement& m, bool all_cores) const noexcept {
+  const double bytes = 2.0 * (m.single ? 4 : 8);
+  const double bandwidth = all_cores ? machine.copy_bytes_per_s_all / machine.threads : machine.copy_bytes_per_s;
+  return bytes / bandwidth * 1e9;
+}
+
+Result run(const Settings& settings, const std::function<void(std::string_view)>& progress_callback) {
+  if (!(settings.n > 0) || settings.cache_bytes < 64 || settings.trials < 1 || !(settings.trial_seconds > 0))
+    throw InvalidArgument("bench: n, array sizes, trials and trial length must be positive");
+  auto progress = [&](std::string_view what) {
+    if (progress_callback) progress_callback(what);
+  };
+  tbb::task_arena arena;
+  Result result{settings, {}, {}, {}};
+  progress("machine: peak FMA rate and streaming bandwidth");
+  result.machine = measure_machine(settings, arena);
+  result.rows = measure_precision<float>(settings, arena, progress);
+  if (settings.doubles) {
+    auto rows = measure_precision<double>(settings, arena, progress);
+    result.rows.insert(result.rows.end(), rows.begin(), rows.end());
+  }
+  progress("lobes against cⁿ");
+  for (const Family family : kFamilies)
+    result.error_vs_power.push_back(
+        analysis::approximation_error(scalar_lobe(family, settings.n), lobes::Power<double>{settings.n}).max_abs);
+  return result;
+}
+
+}  // namespace specula::bench
