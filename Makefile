@@ -22,7 +22,7 @@ report: deps
 	@cmake --build --preset release --target specula_cli
 	@build/release/specula report --out report
 
-# The lobe benchmark (scalar libm against SIMD exact and fast, with the machine's limits; about a
+# The lobe benchmark (scalar libm against SIMD exact and fast, with the machine's limits; under a
 # minute), then the Google Benchmark timings of the library's other paths.
 bench: build
 	@build/release/bench/specula_lobe_bench

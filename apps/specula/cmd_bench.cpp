@@ -20,7 +20,7 @@ struct BenchOptions {
 void add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   auto* cmd = app.add_subcommand("bench", "Time every lobe: scalar libm against SIMD exact and fast, with limits");
-  cmd->add_flag("--quick", o->quick, "A few seconds: 16 MiB streams, short trials (full: 256 MiB, about a minute)");
+  cmd->add_flag("--quick", o->quick, "A few seconds: 16 MiB streams, short trials (full: 256 MiB, under a minute)");
   cmd->add_option("--format", o->format, "table (for people) or json (per lobe and tier)")->capture_default_str()
       ->check(CLI::IsMember({"table", "json"}));
   cmd->add_option("--n", o->n, "The lobes' exponent")->capture_default_str()->check(CLI::Range(1e-3, 1e9));

@@ -317,17 +317,17 @@ HWY_INLINE V<D> KeepNaN(V<D> c, V<D> r) {
 template <class D>
 struct PowerExact {
   // Vector ops per vector, loads and stores not counted (the compute limit's numerator,
-  // docs/simd.md): clamp 2, mask 2, LnDD 56 (its tail polynomial by Estrin), log2 as hi + lo 4,
+  // docs/simd.md): clamp 1, mask 1, LnDD 56 (its tail polynomial by Estrin), log2 as hi + lo 4,
   // y 3, reduction 3, Exp2Reduced 17 (Estrin), masks 3, KeepNaN 2.
-  static constexpr int kOps = 92;
+  static constexpr int kOps = 90;
   D d;
   V<D> n;
   explicit PowerExact(D d_, double n_) : d(d_), n(hn::Set(d_, n_)) {}
   HWY_INLINE V<D> operator()(V<D> c) const {
-    const V<D> cc = ClampAbove(d, c);
+    const V<D> cc = hn::Min(c, hn::Set(d, 1.0));  // NaN lanes: KeepNaN below
     const auto positive = hn::Gt(cc, hn::Zero(d));
     V<D> h, l;
-    LnDD(d, hn::IfThenElse(positive, cc, hn::Set(d, 1.0)), h, l);
+    LnDD(d, cc, h, l);  // finite garbage where c ≤ 0, masked below
     const V<D> inv_ln2_hi = hn::Set(d, 1.4426950408889634074), inv_ln2_lo = hn::Set(d, 2.0355273740931033e-17);
     const V<D> lh = hn::Mul(h, inv_ln2_hi);  // log2 c = lh + ll
     const V<D> ll = hn::MulAdd(h, inv_ln2_lo, hn::MulAdd(l, inv_ln2_hi, ProductError(d, h, inv_ln2_hi, lh)));
