@@ -75,5 +75,27 @@ TEST(RenderGlCli, RefusesTooManyLightsInOneLine) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+TEST(RenderGlCli, CompareOnTheGlBackendMatchesTheCpuPanel) {
+  TempDir dir;
+  const std::string common = "--models log-normalized,schlick -p n=50 --size 64x64 --diff log-normalized -q";
+  for (const char* backend : {"cpu", "gl"}) {
+    const int status = std::system(fmt::format("'{}' compare {} --backend {} --out '{}'", SPECULA_CLI, common, backend,
+                                               (dir / (std::string(backend) + ".png")).string())
+                                       .c_str());
+    ASSERT_EQ(WEXITSTATUS(status), 0) << backend;
+  }
+  const ImageFile gl = read_png(dir / "gl.png"), cpu = read_png(dir / "cpu.png");
+  EXPECT_EQ(get(gl.metadata, "renderer"), "gl");
+  ASSERT_EQ(gl.image.width(), cpu.image.width());
+  ASSERT_EQ(gl.image.height(), cpu.image.height());
+  int far = 0;
+  const Display none{};
+  for (int y = 0; y < gl.image.height(); ++y)
+    for (int x = 0; x < gl.image.width(); ++x)
+      far += std::abs(int(to_srgb8(gl.image.at(x, y).g, none)) - int(to_srgb8(cpu.image.at(x, y).g, none))) > 1;
+  // Images, labels and heat maps alike (the heat maps' shared scale comes from each backend's own images).
+  EXPECT_LE(far, gl.image.width() * gl.image.height() / 1000);
+}
+
 }  // namespace
 }  // namespace specula::render
