@@ -114,7 +114,7 @@ std::string front_svg(const Fits& fits) {
   return to_svg(chart);
 }
 
-std::string shown(const expr::Expression& e) { return html_escape(expr::to_infix(fit::rounded(e, 6))); }
+std::string shown(const expr::Expression& e) { return xml_escape(expr::to_infix(fit::rounded(e, 6))); }
 
 std::string fig8(Context& context, const Fits& fits) {
   DataTable table{"fig8-pareto-front", {"source", "size", "rms", "formula"}, {}};
@@ -126,7 +126,7 @@ std::string fig8(Context& context, const Fits& fits) {
   const std::string links = context.save(table);
 
   std::vector<std::vector<std::string>> rows;
-  for (const auto& p : kTuringBot) rows.push_back({"TuringBot", std::to_string(p.size), show(p.rms, 4), html_escape(p.formula)});
+  for (const auto& p : kTuringBot) rows.push_back({"TuringBot", std::to_string(p.size), show(p.rms, 4), xml_escape(p.formula)});
   double best12 = INFINITY;
   std::string best12_formula;
   for (const auto& c : fits.rounded.front) {
