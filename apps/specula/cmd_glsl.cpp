@@ -1,6 +1,4 @@
 // specula glsl: a model as a self-contained GLSL function (the paper's Fig. 10, for every model).
-#include <fmt/format.h>
-
 #include "cli.h"
 #include "specula/gl/glsl.h"
 #include "specula/gl/scene_shader.h"
@@ -16,27 +14,11 @@ struct GlslOptions {
   std::string out;
 };
 
-/// The call that evaluates the model at the given parameters, e.g. "vec4(50.0, 0.0, 0.0, 0.0)".
-std::string params_literal(const Model& model) {
-  const auto p = gl::model_params(model);
-  return fmt::format("vec4({}, {}, {}, {})", gl::float_literal(p[0]), gl::float_literal(p[1]),
-                     gl::float_literal(p[2]), gl::float_literal(p[3]));
-}
-
 std::string function_text(const GlslOptions& o) {
   const Model model = o.model.make();
-  const gl::Dialect dialect = gl::parse_dialect(o.dialect);
-  if (o.vertex) return gl::scene_vertex_shader(dialect);
-  if (o.shader) return gl::scene_fragment_shader(model, dialect, gl::SceneGeometry::spheres);
-  std::string params;
-  for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
-  return fmt::format(
-      "// specula glsl:{}\n"
-      "// For {} (no #version here: paste into a shader that has one). N, L, V: unit vectors,\n"
-      "// L toward the light, V toward the viewer. At these parameters:\n"
-      "//   float f = specula_brdf(N, L, V, {});\n{}",
-      params, o.dialect == "glsl330" ? "GLSL 3.30 core" : gl::to_string(dialect) + std::string(" (GLSL ES 3.00)"),
-      params_literal(model), gl::model_glsl(model));
+  if (o.vertex) return gl::scene_vertex_shader(gl::parse_dialect(o.dialect));
+  if (o.shader) return gl::scene_fragment_shader(model, gl::parse_dialect(o.dialect), gl::SceneGeometry::spheres);
+  return queries::glsl_function(model, o.dialect, queries::Spelling::option);
 }
 
 }  // namespace
