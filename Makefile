@@ -27,6 +27,7 @@ report: deps
 bench: build
 	@build/release/bench/specula_lobe_bench
 	@build/release/bench/specula_bench
+	@build/release/bench/specula_render_bench
 
 clean:
 	rm -rf build report

@@ -34,24 +34,12 @@ ParamValues ModelOptions::param_values() const {
 
 std::optional<Form> ModelOptions::form_override() const {
   if (form.empty()) return std::nullopt;
-  return parse_form(form);
+  return queries::form_named(form, queries::Spelling::option);
 }
 
-Model ModelOptions::make() const {
-  Model m = make_model(id, param_values(), form_override());
-  return coef ? m.with_coef(*coef) : m;
-}
+queries::ModelSpec ModelOptions::spec() const { return {id, param_values(), form_override(), coef}; }
 
-std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
-  std::vector<std::pair<std::string, std::string>> meta{{"model", std::string(m.id())}};
-  for (std::size_t i = 0; i < m.params().size(); ++i)
-    meta.emplace_back(std::string(m.info().params[i].name), io::format_number(m.params()[i]));
-  if (m.is_lobe()) {
-    meta.emplace_back("form", to_string(m.form()));
-    meta.emplace_back("coef", io::format_number(m.coef()));
-  }
-  return meta;
-}
+Model ModelOptions::make() const { return queries::make(spec(), queries::Spelling::option); }
 
 void OutputOptions::add_to(CLI::App& command) {
   command.add_option("--format", format, "csv (default) or json")
@@ -71,14 +59,6 @@ std::vector<double> option_values(std::string_view option, std::string_view spec
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(fmt::format("{}: {}", option, e.what()));
   }
-}
-
-Model lobe_model_at(std::string_view command, std::string_view id, ParamValues params, double n,
-                    std::optional<Form> form) {
-  if (!make_model(id).is_lobe())
-    throw InvalidArgument(fmt::format("{} works on lobe models; '{}' is a full BRDF", command, id));
-  params["n"] = n;
-  return make_model(id, params, form);
 }
 
 void write_output(const std::string& out, const std::string& text) {

@@ -8,6 +8,7 @@
 
 #include "specula/io/table.h"
 #include "specula/models/model.h"
+#include "specula/queries/queries.h"
 
 namespace specula::cli {
 
@@ -23,6 +24,8 @@ struct ModelOptions {
   void add_coef_to(CLI::App& command);
   ParamValues param_values() const;
   std::optional<Form> form_override() const;
+  /// The model as queries name it; make() builds it (errors spell the options).
+  queries::ModelSpec spec() const;
   Model make() const;
 };
 
@@ -43,11 +46,6 @@ struct CheckFailed {};
 /// io::parse_values, with the option's name in the error message.
 std::vector<double> option_values(std::string_view option, std::string_view spec);
 
-/// The lobe model `id` at exponent n (other parameters from `params`); InvalidArgument naming
-/// `command` when `id` is a full BRDF.
-Model lobe_model_at(std::string_view command, std::string_view id, ParamValues params, double n,
-                    std::optional<Form> form = std::nullopt);
-
 /// Text to stdout, or atomically to `out` if non-empty.
 void write_output(const std::string& out, const std::string& text);
 
@@ -63,8 +61,6 @@ void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_glsl_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
-
-/// Metadata of a model for JSON output: id, parameter values, form.
-std::vector<std::pair<std::string, std::string>> model_meta(const Model& m);
+void add_serve_command(CLI::App& app);
 
 }  // namespace specula::cli

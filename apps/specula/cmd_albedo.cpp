@@ -1,12 +1,5 @@
 // specula albedo: directional albedo ρ(θ_i), by cubature or by Monte Carlo.
-#include <fmt/format.h>
-
 #include "cli.h"
-#include "specula/analysis/albedo.h"
-#include "specula/analysis/monte_carlo.h"
-#include "specula/analysis/parallel.h"
-#include "specula/brdf/directions.h"
-#include "specula/io/values.h"
 
 namespace specula::cli {
 namespace {
@@ -16,25 +9,13 @@ struct AlbedoOptions {
   OutputOptions output;
   std::string theta = "0:80:10,85,89";
   std::string method = "cubature";
-  std::size_t samples = 1'000'000;
+  std::uint64_t samples = 1'000'000;
   std::uint64_t seed = 1;
 };
 
 io::Table albedo_table(const AlbedoOptions& o) {
-  const Model m = o.model.make();
-  const std::vector<double> degrees = option_values("--theta", o.theta);
-  for (const double d : degrees) analysis::require_incidence_deg(d, "--theta");
-  const bool monte_carlo = o.method == "monte-carlo";
-  io::Table table{{"theta_deg", "albedo"}, {}, model_meta(m)};
-  table.meta.emplace_back("method", o.method);
-  if (monte_carlo) table.columns.push_back("standard_error");
-  const auto rows = analysis::parallel_map(std::span<const double>(degrees), [&](double deg) {
-    if (!monte_carlo) return std::vector<double>{deg, analysis::albedo(m, radians(deg)).value};
-    const auto e = analysis::albedo_monte_carlo(m, radians(deg), o.samples, o.seed);
-    return std::vector<double>{deg, e.mean, e.standard_error};
-  });
-  table.rows.assign(rows.begin(), rows.end());
-  return table;
+  const queries::AlbedoQuery q{option_values("--theta", o.theta), o.method, o.samples, o.seed};
+  return queries::albedo_table(o.model.make(), q, queries::Spelling::option);
 }
 
 }  // namespace

@@ -2,12 +2,10 @@
 // Exit 0 when every property holds for every parameter value, 1 when one fails.
 #include <algorithm>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "specula/analysis/check.h"
 #include "specula/error.h"
-#include "specula/io/values.h"
 
 namespace specula::cli {
 namespace {
@@ -22,11 +20,6 @@ struct CheckCliOptions {
   std::string out;
 };
 
-struct Case {
-  Model model;
-  analysis::CheckResult result;
-};
-
 /// The parameter to sweep and its values: --n RANGE is --sweep n=RANGE.
 std::pair<std::string, std::vector<double>> sweep_of(const CheckCliOptions& o) {
   if (!o.n.empty() && !o.sweep.empty()) throw InvalidArgument("give --n or --sweep, not both");
@@ -36,20 +29,6 @@ std::pair<std::string, std::vector<double>> sweep_of(const CheckCliOptions& o) {
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=RANGE", o.sweep));
   return {o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1))};
-}
-
-std::vector<Model> models_to_check(const CheckCliOptions& o) {
-  const auto [name, values] = sweep_of(o);
-  if (values.empty()) return {o.model.make()};
-  std::vector<Model> list;
-  for (const double v : values) {
-    ModelOptions at = o.model;
-    ParamValues params = at.param_values();
-    if (params.contains(name)) throw InvalidArgument(fmt::format("{} is swept; do not also give it with --param", name));
-    at.params.push_back(fmt::format("{}={}", name, v));
-    list.push_back(at.make());
-  }
-  return list;
 }
 
 std::string describe(const Model& m) {
@@ -63,7 +42,7 @@ std::string describe(const Model& m) {
 
 std::string verdict(bool holds) { return holds ? "holds" : "FAILS"; }
 
-std::string text_report(const std::vector<Case>& cases, double last_probe_deg) {
+std::string text_report(const std::vector<queries::CheckCase>& cases, double last_probe_deg) {
   std::string out;
   for (const auto& [m, r] : cases) {
     out += describe(m) + "\n";
@@ -79,25 +58,6 @@ std::string text_report(const std::vector<Case>& cases, double last_probe_deg) {
     out += fmt::format("  non-negativity              {}: min f = {:.6g}\n", verdict(r.non_negative), r.min_value);
   }
   return out;
-}
-
-std::string json_report(const std::vector<Case>& cases) {
-  nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const auto& [m, r] : cases) {
-    nlohmann::ordered_json entry;
-    for (const auto& [key, value] : model_meta(m)) entry[key] = value;
-    entry["albedo_normal"] = r.albedo_normal;
-    entry["max_albedo"] = r.max_albedo.value;
-    entry["max_albedo_theta_deg"] = r.max_albedo.theta_deg;
-    entry["max_asymmetry"] = r.max_asymmetry;
-    entry["pairs"] = r.pairs;
-    entry["min_value"] = r.min_value;
-    entry["conserves_energy"] = r.conserves_energy;
-    entry["reciprocal"] = r.reciprocal;
-    entry["non_negative"] = r.non_negative;
-    list.push_back(std::move(entry));
-  }
-  return list.dump(2) + "\n";
 }
 
 }  // namespace
@@ -130,13 +90,10 @@ void add_check_command(CLI::App& app) {
       "  specula check --model log -p n=20 --form nh --coef $(specula normalize --model log --form nh --n 20 | tail -1 | cut -d, -f2)");
   cmd->callback([o] {
     o->check.grazing_deg = option_values("--grazing", o->grazing);
-    std::vector<Case> cases;
-    for (Model& m : models_to_check(*o)) {
-      auto result = analysis::check(m, o->check);
-      cases.push_back({std::move(m), result});
-    }
+    auto [sweep, values] = sweep_of(*o);
+    const auto cases = queries::check_cases({o->model.spec(), sweep, values, o->check}, queries::Spelling::option);
     const double last_probe = std::max(89.0, *std::max_element(o->check.grazing_deg.begin(), o->check.grazing_deg.end()));
-    write_output(o->out, o->json ? json_report(cases) : text_report(cases, last_probe));
+    write_output(o->out, o->json ? queries::check_json(cases) : text_report(cases, last_probe));
     for (const auto& c : cases)
       if (!c.result.all_hold()) throw CheckFailed();
   });

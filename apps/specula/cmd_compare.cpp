@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cli.h"
+#include "specula/gl/render_gl.h"
 #include "render_options.h"
 #include "specula/error.h"
 #include "specula/render/image_io.h"
@@ -28,6 +29,7 @@ struct CompareOptions {
   double exposure = 0;
   std::string tone_map = "none";
   std::optional<double> scale;
+  std::string backend = "cpu";
   std::string out;
   bool quiet = false;
 };
@@ -111,21 +113,23 @@ render::Scene scene_of(const Model& model, const CompareOptions& o) {
   return scene;
 }
 
-// The one place that renders: a GL back end goes here.
-render::Image render_panel(const render::Scene& scene, const render::RenderSettings& settings) {
-  return render::render_cpu(scene, settings);
-}
-
-// Each distinct model id is rendered once (the same id has the same parameters here).
+// Each distinct model id is rendered once (the same id has the same parameters here); the GL
+// backend creates one context for all of them.
 std::map<std::string, render::Image, std::less<>> render_all(const Models& m, const CompareOptions& o,
                                                              const render::RenderSettings& settings) {
+  std::optional<gl::Context> context;
+  std::optional<gl::Renderer> renderer;
+  if (o.backend == "gl") renderer.emplace(context.emplace());
   std::map<std::string, render::Image, std::less<>> images;
   std::vector<const Model*> all;
   for (const auto& model : m.panels) all.push_back(&model);
   if (m.reference) all.push_back(&*m.reference);
-  for (const Model* model : all)
-    if (!images.contains(model->id()))
-      images.emplace(std::string(model->id()), render_panel(scene_of(*model, o), settings));
+  for (const Model* model : all) {
+    if (images.contains(model->id())) continue;
+    const render::Scene scene = scene_of(*model, o);
+    images.emplace(std::string(model->id()),
+                   renderer ? renderer->render(scene, settings) : render::render_cpu(scene, settings));
+  }
   return images;
 }
 
@@ -144,7 +148,7 @@ render::Metadata metadata_of(const Models& m, const CompareOptions& o, const ren
           {"reference", m.reference ? std::string(m.reference->id()) : "-"},
           {"heatmap", m.reference ? "abs difference of linear luminance Y = 0.2126 R + 0.7152 G + 0.0722 B" : "-"},
           {"scale_max", m.reference ? io::format_number(scale_max) : "-"},
-          {"renderer", "cpu"},
+          {"renderer", o.backend},
           {"size", o.size},
           {"lights", fmt::format("{}", fmt::join(lights, " "))},
           {"diffuse", rgb_text(scene.material.diffuse)},
@@ -229,6 +233,9 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--tonemap", o->tone_map, "none (clamp) or aces (Narkowicz's fit)")->capture_default_str()
       ->check(CLI::IsMember({"none", "aces"}));
   cmd->add_option("--scale", o->scale, "Top of the heat maps' colour scale (default: the largest |ΔL| shown)");
+  cmd->add_option("--backend", o->backend, "cpu (the reference renderer) or gl (OpenGL through EGL: a GPU, or Mesa's llvmpipe)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cpu", "gl"}));
   cmd->add_option("--out,-o", o->out, "Output image FILE.png (8-bit sRGB)")->required();
   cmd->add_flag("--quiet,-q", o->quiet, "Print nothing on success");
   cmd->footer(

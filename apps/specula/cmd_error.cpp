@@ -1,11 +1,5 @@
 // specula error: how well one lobe approximates another, per n (the paper's Figs. 3 and 4).
-#include <fmt/format.h>
-
 #include "cli.h"
-#include "specula/analysis/error.h"
-#include "specula/analysis/parallel.h"
-#include "specula/error.h"
-#include "specula/io/values.h"
 
 namespace specula::cli {
 namespace {
@@ -18,24 +12,9 @@ struct ErrorOptions {
   double zone = 0.5;
 };
 
-lobes::Lobe lobe_of(std::string_view id, const ParamValues& params, double n) {
-  return lobe_model_at("error", id, params, n).lobe();
-}
-
 io::Table error_table(const ErrorOptions& o) {
-  const ParamValues params = o.model.param_values();
-  if (params.contains("n")) throw InvalidArgument("give n with --n, not --param");
-  const std::vector<double> ns = option_values("--n", o.n);
-  for (const double n : ns) lobe_of(o.model.id, params, n), lobe_of(o.reference, {}, n);  // validate first
-  io::Table table{{"n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"},
-                  {},
-                  {{"model", o.model.id}, {"reference", o.reference}, {"zone", io::format_number(o.zone)}}};
-  const auto rows = analysis::parallel_map(std::span<const double>(ns), [&](double n) {
-    const auto e = analysis::approximation_error(lobe_of(o.model.id, params, n), lobe_of(o.reference, {}, n), o.zone);
-    return std::vector<double>{n, e.max_abs, e.argmax_abs_deg, e.max_rel_epicenter, e.max_rel_attenuation};
-  });
-  table.rows.assign(rows.begin(), rows.end());
-  return table;
+  const queries::ErrorQuery q{o.model.id, o.model.param_values(), o.reference, option_values("--n", o.n), o.zone};
+  return queries::error_table(q, queries::Spelling::option);
 }
 
 }  // namespace

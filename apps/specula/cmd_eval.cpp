@@ -2,9 +2,7 @@
 #include <fmt/format.h>
 
 #include "cli.h"
-#include "specula/brdf/directions.h"
 #include "specula/error.h"
-#include "specula/io/values.h"
 
 namespace specula::cli {
 namespace {
@@ -19,37 +17,12 @@ struct EvalOptions {
   double phi_o = 0;
 };
 
-io::Table eval_at_cosines(const Model& m, const EvalOptions& o) {
-  if (!m.is_lobe())
-    throw InvalidArgument(fmt::format(
-        "model '{}' is a full BRDF: give directions with --theta-i and --theta-o", m.id()));
-  io::Table table{{"cos", "value"}, {}, model_meta(m)};
-  for (const double c : option_values("--cos", o.cos)) {
-    if (c < -1 || c > 1) throw InvalidArgument(fmt::format("--cos {} is outside [-1, 1]", c));
-    table.rows.push_back({c, o.bare_lobe ? lobes::eval(m.lobe(), c) : m.at_cos(c)});
-  }
-  return table;
-}
+constexpr auto kOption = queries::Spelling::option;
 
-void check_polar(double degrees, const char* option) {
-  if (!(degrees >= 0 && degrees <= 90))  // NaN too
-    throw InvalidArgument(fmt::format("{} {} is outside [0, 90] degrees", option, degrees));
-}
-
-io::Table eval_at_directions(const Model& m, const EvalOptions& o) {
-  check_polar(*o.theta_i, "--theta-i");
-  if (!(o.phi_o >= -360 && o.phi_o <= 360))  // NaN too
-    throw InvalidArgument(fmt::format("--phi-o {} is outside [-360, 360] degrees", o.phi_o));
-  const Vec3 n{0, 0, 1};
-  const Vec3 l = from_spherical(radians(*o.theta_i), 0.0);
-  io::Table table{{"theta_o_deg", "value"}, {}, model_meta(m)};
-  table.meta.emplace_back("theta_i_deg", io::format_number(*o.theta_i));
-  table.meta.emplace_back("phi_o_deg", io::format_number(o.phi_o));
-  for (const double theta_o : option_values("--theta-o", o.theta_o)) {
-    check_polar(theta_o, "--theta-o");
-    table.rows.push_back({theta_o, m(n, l, from_spherical(radians(theta_o), radians(o.phi_o)))});
-  }
-  return table;
+io::Table evaluated(const Model& m, const EvalOptions& o) {
+  if (o.cos.empty())
+    return queries::eval_at_directions(m, *o.theta_i, option_values("--theta-o", o.theta_o), o.phi_o, kOption);
+  return queries::eval_at_cosines(m, option_values("--cos", o.cos), o.bare_lobe, kOption);
 }
 
 }  // namespace
@@ -77,8 +50,7 @@ void add_eval_command(CLI::App& app) {
   cmd->callback([o] {
     if (o->cos.empty() && !o->theta_i)
       throw InvalidArgument("give --cos LIST (lobe models) or --theta-i and --theta-o (any model)");
-    const Model m = o->model.make();
-    o->output.emit(o->cos.empty() ? eval_at_directions(m, *o) : eval_at_cosines(m, *o));
+    o->output.emit(evaluated(o->model.make(), *o));
   });
 }
 

@@ -1,7 +1,5 @@
 // specula fit: symbolic regression on a CSV file (the paper's Figs. 7-8, without TuringBot).
-#include <cctype>
 #include <cmath>
-#include <set>
 #include <fmt/format.h>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -9,6 +7,7 @@
 
 #include "cli.h"
 #include "specula/error.h"
+#include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/io/csv.h"
 
@@ -112,78 +111,13 @@ nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
   return j;
 }
 
-// Names a variable cannot have in the emitted language (the common reserved words).
-const std::set<std::string_view>& reserved_words(std::string_view language) {
-  static const std::set<std::string_view> cpp{
-      "auto", "bool", "break", "case", "char", "class", "const", "constexpr", "continue",
-      "default", "delete", "do", "double", "else", "enum", "explicit", "extern", "false",
-      "float", "for", "friend", "goto", "if", "inline", "int", "long", "namespace", "new",
-      "operator", "private", "protected", "public", "register", "return", "short", "signed",
-      "sizeof", "static", "struct", "switch", "template", "this", "throw", "true", "try",
-      "typedef", "typename", "union", "unsigned", "using", "virtual", "void", "volatile",
-      "while", "and", "or", "not", "xor", "std"};
-  static const std::set<std::string_view> glsl{
-      "attribute", "const", "uniform", "varying", "buffer", "shared", "layout", "centroid",
-      "flat", "smooth", "break", "continue", "do", "for", "while", "switch", "case", "default",
-      "if", "else", "in", "out", "inout", "float", "double", "int", "void", "bool", "true",
-      "false", "invariant", "precise", "discard", "return", "mat2", "mat3", "mat4", "vec2",
-      "vec3", "vec4", "ivec2", "ivec3", "ivec4", "bvec2", "bvec3", "bvec4", "uint", "uvec2",
-      "uvec3", "uvec4", "lowp", "mediump", "highp", "precision", "sampler2D", "struct",
-      "input", "output", "filter", "sizeof", "cast", "namespace", "using", "common", "partition",
-      "active", "long", "short", "half", "fixed", "unsigned", "superp", "public", "static",
-      "extern", "external", "interface", "asm", "class", "union", "enum", "typedef", "template",
-      "this", "goto", "inline", "noinline", "volatile", "packed", "radians", "degrees", "tan",
-      "asin", "atan", "pow", "exp", "log", "exp2", "log2", "sqrt", "inversesqrt", "sign",
-      "floor", "ceil", "fract", "mod", "min", "max", "clamp", "mix", "step", "smoothstep",
-      "length", "distance", "dot", "cross", "normalize", "reflect", "refract"};
-  static const std::set<std::string_view> python{
-      "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
-      "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
-      "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return",
-      "try", "while", "with", "yield", "math"};
-  static const std::set<std::string_view> none;
-  return language == "cpp" ? cpp : language == "glsl" ? glsl : language == "python" ? python : none;
-}
-
-// "fitted_" and the target with every character an identifier cannot hold replaced by '_'.
-std::string function_name(std::string_view target) {
-  std::string name = "fitted_";
-  for (char ch : target) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  return name;
-}
-
-void check_emittable(const std::vector<std::string>& variables, std::string_view language) {
-  for (const auto& v : variables) {
-    const bool glsl_reserved = language == "glsl" && (v.starts_with("gl_") || v.find("__") != std::string::npos);
-    if (reserved_words(language).contains(v) || glsl_reserved)
-      throw InvalidArgument(fmt::format(
-          "column '{}' is a reserved word in {}: rename it to emit the formula", v, language));
-  }
-}
-
 // The chosen formula as a function in another language, constants at full precision.
 std::string emitted(const fit::Result& r, const FitOptions& o) {
   const auto& c = r.front[r.chosen];
-  const auto& vars = c.formula.variables();
-  const std::string name = function_name(o.target);
   const std::string origin =
       fmt::format("specula fit: {} from {} ({}), size {}, train {} {:.6g}", o.target, o.data,
-                  fmt::join(vars, ", "), c.size, o.metric, c.train_error);
-  std::vector<std::string> params;
-  if (o.emit == "cpp") {
-    for (const auto& v : vars) params.push_back("double " + v);
-    return fmt::format("// {}\ninline double {}({}) {{ return {}; }}\n", origin, name,
-                       fmt::join(params, ", "), expr::to_cpp(c.formula));
-  }
-  if (o.emit == "glsl") {
-    for (const auto& v : vars) params.push_back("float " + v);
-    return fmt::format("// {}\nfloat {}({}) {{ return {}; }}\n", origin, name,
-                       fmt::join(params, ", "), expr::to_glsl(c.formula));
-  }
-  if (o.emit == "python")
-    return fmt::format("import math\n\n\ndef {}({}):\n    \"\"\"{}\"\"\"\n    return {}\n",
-                       name, fmt::join(vars, ", "), origin, expr::to_python(c.formula));
-  return fmt::format("% {}\n{} = {}\n", origin, o.target, expr::to_latex(c.formula));
+                  fmt::join(c.formula.variables(), ", "), c.size, o.metric, c.train_error);
+  return fit::emit_function(c.formula, o.emit, o.target, origin);
 }
 
 // On a terminal: the front each time it improves, and a status line.
@@ -220,7 +154,7 @@ void run(const FitOptions& o) {
   const fit::Options options = search_options(o);
   if (!o.emit.empty() && o.emit != "cpp" && o.emit != "glsl" && o.emit != "latex" && o.emit != "python")
     throw InvalidArgument(fmt::format("--emit must be cpp, glsl, latex or python, got '{}'", o.emit));
-  check_emittable(data.variables, o.emit);
+  fit::check_emittable(data.variables, o.emit);
   fit::Result result;
   if (!o.quiet && isatty(STDERR_FILENO)) {
     ProgressPrinter printer(options.metric);

@@ -1,8 +1,7 @@
 // specula glsl: a model as a self-contained GLSL function (the paper's Fig. 10, for every model).
-#include <fmt/format.h>
-
 #include "cli.h"
 #include "specula/gl/glsl.h"
+#include "specula/gl/scene_shader.h"
 
 namespace specula::cli {
 namespace {
@@ -10,28 +9,16 @@ namespace {
 struct GlslOptions {
   ModelOptions model;
   std::string dialect = "glsl330";
+  bool shader = false;
+  bool vertex = false;
   std::string out;
 };
 
-/// The call that evaluates the model at the given parameters, e.g. "vec4(50.0, 0.0, 0.0, 0.0)".
-std::string params_literal(const Model& model) {
-  const auto p = gl::model_params(model);
-  return fmt::format("vec4({}, {}, {}, {})", gl::float_literal(p[0]), gl::float_literal(p[1]),
-                     gl::float_literal(p[2]), gl::float_literal(p[3]));
-}
-
 std::string function_text(const GlslOptions& o) {
   const Model model = o.model.make();
-  const gl::Dialect dialect = gl::parse_dialect(o.dialect);
-  std::string params;
-  for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
-  return fmt::format(
-      "// specula glsl:{}\n"
-      "// For {} (no #version here: paste into a shader that has one). N, L, V: unit vectors,\n"
-      "// L toward the light, V toward the viewer. At these parameters:\n"
-      "//   float f = specula_brdf(N, L, V, {});\n{}",
-      params, o.dialect == "glsl330" ? "GLSL 3.30 core" : gl::to_string(dialect) + std::string(" (GLSL ES 3.00)"),
-      params_literal(model), gl::model_glsl(model));
+  if (o.vertex) return gl::scene_vertex_shader(gl::parse_dialect(o.dialect));
+  if (o.shader) return gl::scene_fragment_shader(model, gl::parse_dialect(o.dialect), gl::SceneGeometry::spheres);
+  return queries::glsl_function(model, o.dialect, queries::Spelling::option);
 }
 
 }  // namespace
@@ -43,6 +30,10 @@ void add_glsl_command(CLI::App& app) {
   o->model.add_coef_to(*cmd);
   cmd->add_option("--dialect", o->dialect, "glsl330 (desktop GLSL 3.30 core), gles300 (GLSL ES 3.00) or webgl2")
       ->capture_default_str();
+  cmd->add_flag("--shader", o->shader,
+                "Print the complete fragment shader of the comparison sphere instead (the one `render --backend gl` "
+                "runs; its uniforms are documented at its top)");
+  cmd->add_flag("--vertex", o->vertex, "Print the matching vertex shader (a full-screen triangle from gl_VertexID)");
   cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout");
   cmd->footer(
       "Prints the model's functions and the entry point\n"
@@ -51,7 +42,9 @@ void add_glsl_command(CLI::App& app) {
       "the log lobe's exact coef(n) from two Chebyshev series (4e-7 relative in float, n in (0, 1e30]).\n"
       "Examples:\n"
       "  specula glsl --model log-normalized                 # the paper's Fig. 10, exactly normalized\n"
-      "  specula glsl --model ggx --dialect webgl2 -o ggx.glsl");
+      "  specula glsl --model ggx --dialect webgl2 -o ggx.glsl\n"
+      "  specula glsl --model log-normalized --shader --dialect webgl2 -o sphere.frag   # the whole sphere\n"
+      "  specula glsl --model log-normalized --vertex --dialect webgl2 -o sphere.vert");
   cmd->callback([o] { write_output(o->out, function_text(*o)); });
 }
 

@@ -1,6 +1,5 @@
 // specula models: the catalogue, as a table for people or JSON for programs.
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli.h"
 
@@ -31,30 +30,6 @@ std::string models_table() {
   return out;
 }
 
-std::string models_json() {
-  nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const auto& m : models()) {
-    nlohmann::ordered_json params = nlohmann::ordered_json::array();
-    for (const auto& p : m.params)
-      params.push_back({{"name", p.name},
-                        {"default", p.default_value},
-                        {"min", p.min},
-                        {"max", p.max},
-                        {"min_exclusive", p.min_exclusive},
-                        {"meaning", p.meaning}});
-    nlohmann::ordered_json entry = {{"id", m.id},         {"name", m.name},
-                                    {"kind", to_string(m.kind)}, {"summary", m.summary},
-                                    {"source", m.source}, {"params", params}};
-    if (m.kind == ModelKind::lobe) {
-      entry["form"] = to_string(m.form);
-      entry["normalization"] = to_string(m.normalization);
-      entry["coef"] = m.coef_formula;
-    }
-    list.push_back(std::move(entry));
-  }
-  return list.dump(2) + "\n";
-}
-
 }  // namespace
 
 void add_models_command(CLI::App& app) {
@@ -66,7 +41,7 @@ void add_models_command(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print JSON instead of a table");
   cmd->add_option("--out,-o", *out, "Write to FILE (atomically) instead of stdout");
-  cmd->callback([json, out] { write_output(*out, *json ? models_json() : models_table()); });
+  cmd->callback([json, out] { write_output(*out, *json ? queries::models_json() : models_table()); });
 }
 
 }  // namespace specula::cli

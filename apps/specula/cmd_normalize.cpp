@@ -1,11 +1,5 @@
 // specula normalize: the coefficient k of a lobe in a form, exact and/or by quadrature.
-#include <fmt/format.h>
-
 #include "cli.h"
-#include "specula/analysis/check.h"
-#include "specula/error.h"
-#include "specula/io/values.h"
-#include "specula/normalize/normalize.h"
 
 namespace specula::cli {
 namespace {
@@ -20,46 +14,11 @@ struct NormalizeOptions {
   double step = 1;
 };
 
-normalize::Method parse_method(const std::string& method) {
-  if (method == "exact" || method == "both") return normalize::Method::exact;
-  if (method == "quadrature") return normalize::Method::quadrature;
-  return normalize::Method::automatic;
-}
-
 io::Table normalize_table(const NormalizeOptions& o) {
-  ParamValues params = o.model.param_values();
-  if (params.contains("n")) throw InvalidArgument("give n with --n, not --param");
-  const auto form = o.model.form_override();
-  const bool both = o.method == "both";
-  const bool strict = o.condition == "strict";
-  if (strict && (o.method == "exact" || both))
-    throw InvalidArgument("the strict condition has no closed form: drop --method or use quadrature");
-  const normalize::Method method = parse_method(o.method);
-
-  io::Table table{{"n", "coef"}, {}, {{"model", o.model.id}, {"method", o.method}, {"condition", o.condition}}};
-  if (both) table.columns.insert(table.columns.end(), {"coef_quadrature", "rel_diff"});
-  if (!o.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
-
-  const auto ns = o.n.empty() ? std::vector<double>{make_model(o.model.id).param("n")}
-                              : option_values("--n", o.n);
-  for (const double n : ns) {
-    const Model m = lobe_model_at("normalize", o.model.id, params, n, form);
-    if (table.meta.size() == 3) table.meta.emplace_back("form", to_string(m.form()));
-    const double coef = strict ? analysis::strict_coefficient(m, o.step)
-                               : normalize::coefficient(m.lobe(), m.form(), method);
-    std::vector<double> row{n, coef};
-    if (both) {
-      const double q = normalize::quadrature(m.lobe(), m.form());
-      row.insert(row.end(), {q, (q - coef) / coef});
-    }
-    if (!o.compare.empty()) {
-      const double other = lobe_model_at("--compare", o.compare, {}, n).coef();
-      row.insert(row.end(), {other, (other - coef) / coef});  // k_other·2π·Int − 1
-    }
-    table.rows.push_back(std::move(row));
-  }
-  if (!o.compare.empty()) table.meta.emplace_back("compare", o.compare);
-  return table;
+  queries::NormalizeQuery q{o.model.id, o.model.param_values(), o.model.form_override(), {},
+                            o.method, o.compare, o.condition, o.step};
+  if (!o.n.empty()) q.n = option_values("--n", o.n);
+  return queries::normalize_table(q, queries::Spelling::option);
 }
 
 }  // namespace

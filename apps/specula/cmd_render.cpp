@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "render_options.h"
 #include "specula/error.h"
+#include "specula/gl/render_gl.h"
 #include "specula/render/image_io.h"
 #include "specula/render/render.h"
 
@@ -45,7 +46,14 @@ render::Scene scene_of(const RenderOptions& o) {
   return scene;
 }
 
-render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o, bool with_display) {
+// What rendered the image: "cpu", or the GL renderer's description (render_gl).
+struct Rendered {
+  render::Image image;
+  std::string gl_renderer;  ///< empty for the CPU backend
+};
+
+render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o, const Rendered& rendered,
+                             bool with_display) {
   const Model& model = scene.material.model;
   std::vector<std::string> params, lights;
   for (std::size_t i = 0; i < model.params().size(); ++i)
@@ -63,6 +71,7 @@ render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o,
                            {"diffuse", rgb_text(scene.material.diffuse)},
                            {"specular", rgb_text(scene.material.specular)},
                            {"ambient", rgb_text(scene.material.ambient)}});
+  if (!rendered.gl_renderer.empty()) meta.emplace_back("gl-renderer", rendered.gl_renderer);
   if (with_display)
     meta.insert(meta.end(), {{"exposure", io::format_number(o.exposure)}, {"tonemap", o.tone_map}});
   return meta;
@@ -72,6 +81,18 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+Rendered render_on_backend(const RenderOptions& o, const render::Scene& scene, const render::RenderSettings& settings) {
+  if (o.backend == "cpu") return {render::render_cpu(scene, settings), ""};
+  const gl::Context context;
+  gl::Renderer renderer(context);
+  return {renderer.render(scene, settings), gl::to_string(context.info())};
+}
+
+std::string backend_text(const Rendered& rendered) {
+  if (rendered.gl_renderer.empty()) return fmt::format("on {} threads", tbb::info::default_concurrency());
+  return "on GL " + rendered.gl_renderer;
+}
+
 void run_render(const RenderOptions& o) {
   const render::ImageFormat format = render::image_format(o.out);
   if (!std::isfinite(o.exposure)) throw InvalidArgument(fmt::format("--exposure {} is not finite", o.exposure));
@@ -79,20 +100,21 @@ void run_render(const RenderOptions& o) {
   if (format == render::ImageFormat::exr && (o.exposure != 0 || display.tone_map != render::ToneMap::none))
     throw InvalidArgument("--exposure and --tonemap shape 8-bit output; an EXR holds the linear radiance as rendered");
   const render::ExrPixel exr_pixel = render::parse_exr_pixel(o.exr_pixel);
-  if (o.backend != "cpu") throw InvalidArgument(fmt::format("--backend {} is not available yet: use --backend cpu", o.backend));
   const render::RenderSettings settings = settings_of(o.size);
   const render::Scene scene = scene_of(o);
 
   const auto start = std::chrono::steady_clock::now();
-  const render::Image image = render::render_cpu(scene, settings);
+  const Rendered rendered = render_on_backend(o, scene, settings);
   const double render_ms = milliseconds_since(start);
   const auto written = std::chrono::steady_clock::now();
-  if (format == render::ImageFormat::png) render::write_png(o.out, image, display, metadata_of(scene, o, true));
-  else render::write_exr(o.out, image, exr_pixel, metadata_of(scene, o, false));
+  if (format == render::ImageFormat::png)
+    render::write_png(o.out, rendered.image, display, metadata_of(scene, o, rendered, true));
+  else
+    render::write_exr(o.out, rendered.image, exr_pixel, metadata_of(scene, o, rendered, false));
   if (o.verbose)
-    std::cerr << fmt::format("specula: rendered {}x{} ({} light{}) in {:.1f} ms on {} threads; wrote {} in {:.1f} ms\n",
+    std::cerr << fmt::format("specula: rendered {}x{} ({} light{}) in {:.1f} ms {}; wrote {} in {:.1f} ms\n",
                              settings.width, settings.height, scene.lights.size(), scene.lights.size() == 1 ? "" : "s",
-                             render_ms, tbb::info::default_concurrency(), o.out, milliseconds_since(written));
+                             render_ms, backend_text(rendered), o.out, milliseconds_since(written));
 }
 
 }  // namespace
@@ -115,10 +137,12 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"none", "aces"}));
   cmd->add_option("--exr-pixel", o->exr_pixel, "EXR samples: half or float")->capture_default_str()
       ->check(CLI::IsMember({"half", "float"}));
-  cmd->add_option("--backend", o->backend, "cpu (gl: not available yet)")->capture_default_str()
+  cmd->add_option("--backend", o->backend,
+                  "cpu, or gl: OpenGL 3.3 through EGL (a GPU if EGL lists one, else Mesa's llvmpipe);\n"
+                  "the same image within float rounding; at most 16 spheres and 8 lights")->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
   cmd->add_option("--out,-o", o->out, "Output image: FILE.png (8-bit sRGB) or FILE.exr (linear)")->required();
-  cmd->add_flag("--verbose,-v", o->verbose, "Print the render and write times to stderr");
+  cmd->add_flag("--verbose,-v", o->verbose, "Print the render and write times (and the GL renderer) to stderr");
   cmd->footer(
       "Shading (MATH.md §5): L = ambient·diffuse + Σ_lights (diffuse/π + specular·f(N, L, V))·E·max(0, N·L),\n"
       "one ray per pixel centre; OBJ meshes cast shadows. PNG and EXR carry the model, its parameters,\n"
@@ -126,7 +150,8 @@ void add_render_command(CLI::App& app) {
       "  specula render --model log-normalized -p n=50 --out sphere.png\n"
       "  specula render --model phong-normalized -p n=20 --size 800x600 --light dir:1,1,2 \\\n"
       "      --light point:-3,2,4:1,0.9,0.8:30 --tonemap aces --out sphere.png\n"
-      "  specula render --model ggx -p alpha=0.2 --scene bunny.obj --exr-pixel float --out bunny.exr");
+      "  specula render --model ggx -p alpha=0.2 --scene bunny.obj --exr-pixel float --out bunny.exr\n"
+      "  specula render --model log-normalized -p n=50 --backend gl --size 2048x2048 --verbose --out big.png");
   cmd->callback([o] { run_render(*o); });
 }
 

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   specula::cli::add_glsl_command(app);
   specula::cli::add_report_command(app);
   specula::cli::add_bench_command(app);
+  specula::cli::add_serve_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -409,6 +409,7 @@ class Search {
 
   Result run() {
     const auto fitted = enumerate();
+    if (!stopped()) check_budget(false);  // e.g. a cancel asked for by the last report
     if (options_.max_generations == 0) stopped_by_ = "generations";
     if (!stopped()) evolve(fitted);
     Result result;
@@ -438,8 +439,9 @@ class Search {
       for (std::size_t i = first; i < last; ++i) archive_.offer(fitted[i]);
       evaluations_ += static_cast<std::int64_t>(last - first);
       check_budget(false);
+      report();
     }
-    report();
+    if (forms.empty()) report();
     return fitted;
   }
 
@@ -490,7 +492,9 @@ class Search {
   // The generation budget applies to the genetic search only.
   void check_budget(bool evolving) {
     const auto front = archive_.front();
-    if (options_.target_error && !front.empty() &&
+    if (options_.cancel && options_.cancel->load())
+      stopped_by_ = "cancelled";
+    else if (options_.target_error && !front.empty() &&
         front.back()->loss <= to_loss(options_.metric, *options_.target_error))
       stopped_by_ = "target error";
     else if (options_.max_evaluations && evaluations_ >= *options_.max_evaluations)

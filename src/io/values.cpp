@@ -26,28 +26,30 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
   throw InvalidArgument(fmt::format("malformed range '{}': {}", item, why));
 }
 
-void check_count(std::string_view item, double count) {
-  if (!(count <= static_cast<double>(kMaxValues)))
-    malformed(item, fmt::format("more than {} values", kMaxValues));
+// `count` more values after the `already` there are must stay within `max_values`.
+void check_count(std::string_view item, double count, std::size_t already, std::size_t max_values) {
+  if (!(count <= static_cast<double>(max_values - already)))
+    malformed(item, fmt::format("more than {} values", max_values));
 }
 
-void append_stepped(std::string_view item, double a, double b, double step, std::vector<double>& out) {
+void append_stepped(std::string_view item, double a, double b, double step, std::size_t max_values,
+                    std::vector<double>& out) {
   if (!(step > 0)) malformed(item, "the step must be > 0");
   if (b < a) malformed(item, "the end is below the start");
   const double count = std::floor((b - a) / step * (1 + 1e-12)) + 1;
-  check_count(item, count);
+  check_count(item, count, out.size(), max_values);
   for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)  // ≤ b; b itself despite round-off
     out.push_back(std::abs(b - (a + step * i)) <= 1e-9 * step ? b : std::min(b, a + step * i));
 }
 
 void append_counted(std::string_view item, double a, double b, std::string_view count_text,
-                    std::vector<double>& out) {
+                    std::size_t max_values, std::vector<double>& out) {
   const auto at = split(count_text, ':');
   if (at.size() > 2 || (at.size() == 2 && at[1] != "log"))
     malformed(item, "expected a:b@count or a:b@count:log");
   const double count = parse_number(at[0], fmt::format("the count of '{}'", item));
   if (count < 1 || count != std::floor(count)) malformed(item, "the count must be a whole number ≥ 1");
-  check_count(item, count);
+  check_count(item, count, out.size(), max_values);
   const bool log = at.size() == 2;
   if (log && !(a > 0 && b > 0)) malformed(item, "log spacing needs a > 0 and b > 0");
   const auto n = static_cast<std::size_t>(count);
@@ -58,7 +60,7 @@ void append_counted(std::string_view item, double a, double b, std::string_view 
   }
 }
 
-void append_item(std::string_view item, std::vector<double>& out) {
+void append_item(std::string_view item, std::size_t max_values, std::vector<double>& out) {
   if (item == "paper50") {
     const auto p = paper50();
     out.insert(out.end(), p.begin(), p.end());
@@ -75,12 +77,13 @@ void append_item(std::string_view item, std::vector<double>& out) {
   const double b = parse_number(parts[1], fmt::format("the end of '{}'", item));
   if (at != std::string_view::npos) {
     if (parts.size() != 2) malformed(item, "a step and a count cannot both be given");
-    append_counted(item, a, b, item.substr(at + 1), out);
+    append_counted(item, a, b, item.substr(at + 1), max_values, out);
   } else if (parts.size() == 3) {
-    append_stepped(item, a, b, parse_number(parts[2], fmt::format("the step of '{}'", item)), out);
+    append_stepped(item, a, b, parse_number(parts[2], fmt::format("the step of '{}'", item)), max_values,
+                   out);
   } else {
     if (a != std::floor(a) || b != std::floor(b)) malformed(item, "a:b takes integers (use a:b:step)");
-    append_stepped(item, a, b, 1, out);
+    append_stepped(item, a, b, 1, max_values, out);
   }
 }
 
@@ -98,13 +101,13 @@ double parse_number(std::string_view text, std::string_view what) {
   return value;
 }
 
-std::vector<double> parse_values(std::string_view spec) {
+std::vector<double> parse_values(std::string_view spec, std::size_t max_values) {
   if (spec.empty()) throw InvalidArgument("empty list of values");
   std::vector<double> values;
   for (const auto item : split(spec, ',')) {
     if (item.empty()) malformed(spec, "empty item between commas");
-    append_item(item, values);
-    if (values.size() > kMaxValues) malformed(spec, fmt::format("more than {} values", kMaxValues));
+    append_item(item, max_values, values);
+    if (values.size() > max_values) malformed(spec, fmt::format("more than {} values", max_values));
   }
   return values;
 }

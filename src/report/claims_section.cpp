@@ -53,7 +53,7 @@ std::vector<Claim> claims(const Context& c) {
     const bool matched = rms->value <= 2.80e-4;
     out.push_back({"TuringBot's size-12 formula fits the table with RMS 2.80·10<sup>−4</sup>", "Figs. 7–8",
                    "fig8-pareto-front",
-                   fmt::format("specula fit, size ≤ 12: RMS {} (<code>{}</code>)", rms->text, html_escape(formula->text)),
+                   fmt::format("specula fit, size ≤ 12: RMS {} (<code>{}</code>)", rms->text, xml_escape(formula->text)),
                    matched, matched ? "reproduced without TuringBot" : "not reached within the report's budget"});
   }
   if (auto d = get(c, "paper_delta_1000"), ours = get(c, "specula_fit_delta"); d && ours) {

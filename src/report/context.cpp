@@ -52,20 +52,6 @@ std::string to_json(const DataTable& table) {
   return nlohmann::ordered_json{{"table", table.name}, {"columns", table.columns}, {"rows", rows}}.dump(1) + "\n";
 }
 
-std::string html_escape(std::string_view text) {
-  std::string out;
-  for (const char ch : text) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
-    }
-  }
-  return out;
-}
-
 std::string read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidArgument(fmt::format("cannot read '{}'", path.string()));
@@ -129,7 +115,7 @@ std::string Context::save(const DataTable& table) {
 std::string Context::figure(const std::string& name, const std::string& body, const std::string& caption,
                             const std::string& command, const std::string& links) {
   std::string out = fmt::format("<figure id=\"{}\">\n{}<figcaption>{}", name, body, caption);
-  if (!command.empty()) out += fmt::format("<br><span class=\"cmd\">Regenerate: <code>{}</code></span>", html_escape(command));
+  if (!command.empty()) out += fmt::format("<br><span class=\"cmd\">Regenerate: <code>{}</code></span>", xml_escape(command));
   out += fmt::format("<br><span class=\"files\">Files: {}</span>", links);
   return out + "</figcaption></figure>\n";
 }
@@ -149,7 +135,7 @@ std::string Context::png_figure(const std::string& name, const std::string& png_
                                 const std::string& command, const std::string& data_links) {
   write(name + ".png", png_bytes);
   const std::string img = fmt::format("<img src=\"data:image/png;base64,{}\" alt=\"{}\">\n", base64(png_bytes),
-                                      html_escape(name));
+                                      xml_escape(name));
   return figure(name, img, caption, command,
                 data_links + (data_links.empty() ? "" : ", ") + fmt::format("<a href=\"{0}.png\">{0}.png</a>", name));
 }

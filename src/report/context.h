@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "specula/report/plot.h"
 #include "specula/report/report.h"
 
 namespace specula::report {
@@ -27,10 +28,10 @@ struct DataTable {
 std::string to_csv(const DataTable& table);
 std::string to_json(const DataTable& table);
 
-/// An HTML table; `header` and every row hold ready-made cell HTML (escaped by the caller).
+/// An HTML table; `header` and every row hold ready-made cell HTML (escaped by the caller with
+/// xml_escape, plot.h).
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                        const std::string& css_class = "");
-std::string html_escape(std::string_view text);
 /// The whole file as bytes; throws InvalidArgument if it cannot be read.
 std::string read_bytes(const std::filesystem::path& path);
 std::string base64(std::string_view bytes);

@@ -242,8 +242,8 @@ Chart fits_chart(const std::vector<OwnFit>& fits, const std::vector<double>& che
 std::string fits_table(const std::vector<OwnFit>& fits) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& f : fits)
-    rows.push_back({html_escape(f.target.model), to_string(f.target.form),
-                    "<code>" + html_escape(expr::to_infix(f.shown)) + "</code>", std::to_string(f.chosen.size),
+    rows.push_back({xml_escape(f.target.model), to_string(f.target.form),
+                    "<code>" + xml_escape(expr::to_infix(f.shown)) + "</code>", std::to_string(f.chosen.size),
                     show(max_abs(f.relative), 2)});
   return html_table({"lobe", "form", "k(n), specula's fit", "size", "max relative error, n ∈ [1, 1000]"}, rows, "text");
 }

@@ -38,7 +38,7 @@ std::string fig10(Context& context) {
              "(measured now, in float arithmetic identical to the shader's). Each function cites its source on its "
              "first line. File: <a href=\"fig10-log-normalized.glsl\">fig10-log-normalized.glsl</a>.</p>\n",
              show(error, 2)) +
-         "<details><summary>The GLSL</summary><pre><code>" + html_escape(glsl) + "</code></pre></details>\n";
+         "<details><summary>The GLSL</summary><pre><code>" + xml_escape(glsl) + "</code></pre></details>\n";
 }
 
 }  // namespace

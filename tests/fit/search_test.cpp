@@ -2,6 +2,7 @@
 // thread counts, budgets, the train/test split and bad input.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 #include "specula/error.h"
@@ -144,6 +145,23 @@ TEST(Search, StopsAtTheTargetErrorOrTheEvaluationBudget) {
   const Result r = search(hard, budget);
   EXPECT_EQ(r.stopped_by, "evaluations");
   EXPECT_GE(r.evaluations, 3000);
+}
+
+TEST(Search, ACancelledSearchStopsWithTheFrontSoFar) {
+  const Data d = sampled("sin(3*x) + x*x", 0, 2, 30);
+  Options o = quick(100000);
+  std::atomic<bool> cancel = false;
+  o.cancel = &cancel;
+  int reports = 0;
+  const Result r = search(d, o, [&](const Progress& p) {
+    ++reports;
+    EXPECT_FALSE(p.front->empty());
+    cancel = true;  // seen at the next budget check, before the genetic search
+  });
+  EXPECT_EQ(r.stopped_by, "cancelled");
+  EXPECT_LE(reports, 2);  // the chunk reported, and at most one more
+  EXPECT_FALSE(r.front.empty());
+  EXPECT_EQ(r.generations, 0);
 }
 
 TEST(Search, HeldOutRowsGiveATestError) {

@@ -138,6 +138,23 @@ TEST(GlslCli, WritesAFunctionThatCompilesAfterAVersionLine) {
   EXPECT_TRUE(check.ok) << check.log;
 }
 
+TEST(GlslCli, ShaderAndVertexPrintTheComparisonSphereThatCompiles) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto frag = dir / fmt::format("specula-glsl-cli-{}.frag", ::getpid());
+  const auto vert = dir / fmt::format("specula-glsl-cli-{}.vert", ::getpid());
+  ASSERT_EQ(run_cli(fmt::format("--model log-normalized --shader --dialect webgl2 -o '{}'", frag.string())), 0);
+  ASSERT_EQ(run_cli(fmt::format("--model log-normalized --vertex --dialect webgl2 -o '{}'", vert.string())), 0);
+  const std::string fragment = testing::read_file(frag), vertex = testing::read_file(vert);
+  std::filesystem::remove(frag);
+  std::filesystem::remove(vert);
+  EXPECT_EQ(fragment.rfind("#version 300 es", 0), 0u);
+  EXPECT_NE(fragment.find("float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params)"), std::string::npos);
+  EXPECT_NE(fragment.find("void main()"), std::string::npos);
+  const auto f = testing::validate_glsl(fragment, "frag"), v = testing::validate_glsl(vertex, "vert");
+  EXPECT_TRUE(f.ok) << f.log;
+  EXPECT_TRUE(v.ok) << v.log;
+}
+
 TEST(GlslCli, BadInputExitsWith2AndWritesNothing) {
   const auto file = std::filesystem::temp_directory_path() / fmt::format("specula-glsl-bad-{}.glsl", ::getpid());
   EXPECT_EQ(run_cli(fmt::format("--model log --dialect glsl450 -o '{}'", file.string())), 2);

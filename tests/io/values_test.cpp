@@ -221,6 +221,20 @@ TEST(ParseValues, EveryMalformedKindThrowsNamingTheItem) {
   }
 }
 
+TEST(ParseValues, AGivenCapIsCheckedBeforeARangeExpands) {
+  EXPECT_THAT(parse_values("1:5", 5), ElementsAre(1, 2, 3, 4, 5));
+  EXPECT_THAT(parse_values("1,2:3,paper50", 53), ::testing::SizeIs(53));
+  for (const std::string spec : {"1:6", "0:1@6", "1,2,3,4,5,6", "1:3,4:6", "1:1000000000", "paper50"}) {
+    SCOPED_TRACE(spec);
+    try {
+      (void)parse_values(spec, 5);
+      ADD_FAILURE() << "no InvalidArgument";
+    } catch (const InvalidArgument& e) {
+      EXPECT_THAT(e.what(), HasSubstr("more than 5 values"));
+    }
+  }
+}
+
 TEST(ParseValues, MoreThanMaxValuesThrows) {
   const auto max = kMaxValues;
   for (const std::string& spec : {fmt::format("1:{}", max + 1), fmt::format("0:1@{}", max + 1),

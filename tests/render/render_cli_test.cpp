@@ -98,7 +98,6 @@ TEST(RenderCli, BadInputFailsInOneLineWithExitCodeTwoAndNoFile) {
       {"--model phong --size 10 --out " + png, "--size '10'"},
       {"--model phong --out " + quoted("no/x.png"), "cannot write"},
       {"--model phong --out " + quoted("x.jpg"), "unknown image format"},
-      {"--model phong --backend gl --out " + png, "not available yet"},
       {"--model phong --light dir:0,0 --out " + png, "dir:0,0"},
       {"--model phong --diffuse 1,2 --out " + png, "--diffuse"},
       {"--model phong --tonemap aces --out " + quoted("x.exr"), "EXR"},

@@ -6,6 +6,7 @@
 // front of size against error. With the same seed and budgets in generations or evaluations the
 // front is the same for any thread count (a time budget stops at a machine-dependent epoch).
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -84,6 +85,9 @@ struct Options {
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
+  /// When set, the search stops at its next budget check (after an enumeration chunk or an
+  /// epoch of generations) with stopped_by "cancelled" and the front found so far.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// Rows of named variables and a target. Every column has the same, non-zero length; values
@@ -115,7 +119,7 @@ struct Result {
   std::int64_t evaluations = 0;  // formulas whose constants were fitted and error measured
   std::int64_t generations = 0;
   double seconds = 0;
-  std::string stopped_by;  // "time", "generations", "evaluations", "target error"
+  std::string stopped_by;  // "time", "generations", "evaluations", "target error", "cancelled"
 };
 
 /// Throws InvalidArgument on bad data or options (each message names the problem).

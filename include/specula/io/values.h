@@ -6,20 +6,22 @@
 //   paper50        the 50 integers n₀ = 1, nᵢ = max(nᵢ₋₁ + 1, round(1000^(i/49))) (1…7 like the
 //                  paper's Fig. 5 file, up to 1000)
 // Items combine with commas: "0.5,1:4,100". Every value is finite.
+#include <cstddef>
 #include <string_view>
 #include <vector>
 
 namespace specula::io {
 
-/// Throws InvalidArgument naming the malformed item.
-std::vector<double> parse_values(std::string_view spec);
+/// The most values one spec may expand to.
+inline constexpr std::size_t kMaxValues = 10'000'000;
+
+/// Throws InvalidArgument naming the malformed item, or when the spec expands to more than
+/// `max_values` values (checked before any range is expanded).
+std::vector<double> parse_values(std::string_view spec, std::size_t max_values = kMaxValues);
 
 /// One finite number, all of `text` (no trailing characters); throws InvalidArgument naming `what`.
 double parse_number(std::string_view text, std::string_view what);
 
 std::vector<double> paper50();
-
-/// The most values one spec may expand to.
-inline constexpr std::size_t kMaxValues = 10'000'000;
 
 }  // namespace specula::io

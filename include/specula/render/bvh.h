@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "specula/render/scene.h"
@@ -36,20 +37,25 @@ class Bvh {
   /// The longest root-to-leaf path in nodes.
   std::size_t depth() const noexcept { return depth_; }
 
- private:
   struct Box {
     Vec3 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
              std::numeric_limits<double>::infinity()};
     Vec3 max = -min;
   };
-  /// A leaf holds triangles [first, first + count); an inner node (count == 0) has its left
-  /// child right after it and its right child at `first`.
+  /// A leaf holds triangles()[first, first + count); an inner node (count == 0) has its left
+  /// child right after it and its right child at `first`. Node 0 is the root.
   struct Node {
     Box box;
     std::uint32_t first = 0;
     std::uint32_t count = 0;
   };
 
+  /// The flattened tree and the triangles in leaf order, for a traversal elsewhere (the GL
+  /// renderer copies both into textures).
+  std::span<const Node> nodes() const noexcept { return nodes_; }
+  std::span<const Triangle> triangles() const noexcept { return triangles_; }
+
+ private:
   /// Builds the node of order[begin, end) and its subtree; returns its index.
   std::size_t build(std::vector<std::uint32_t>& order, std::size_t begin, std::size_t end,
                     const std::vector<Vec3>& centroids, std::size_t level);

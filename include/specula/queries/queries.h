@@ -1,0 +1,141 @@
+#pragma once
+// The computations behind the analysis commands of the CLI and the endpoints of the server —
+// eval, normalize, albedo, error, check, glsl, models — with their validation, in one place so
+// that both interfaces give the same numbers under the same rules. Inputs arrive as values
+// (each interface parses its own syntax); results are io::Tables or text. Bad input throws
+// InvalidField with the field's key ("theta_i", "params", "n", …) and a message that spells the
+// field the way the interface does: `--theta-i` for the CLI, `theta_i` for the server's JSON.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "specula/analysis/check.h"
+#include "specula/io/table.h"
+#include "specula/models/model.h"
+
+namespace specula::queries {
+
+/// How an interface names a field in its messages.
+enum class Spelling {
+  option,  ///< the CLI: "theta_i" → "--theta-i", "params" → "--param"
+  key      ///< the server: the JSON key itself
+};
+
+/// `key` as `spelling` spells it.
+std::string spelled(std::string_view key, Spelling spelling);
+
+/// A model as a request names it: id, parameter values (others at their defaults), an optional
+/// form and an optional coefficient overriding the model's own k.
+struct ModelSpec {
+  std::string id;
+  ParamValues params;
+  std::optional<Form> form;
+  std::optional<double> coef;
+};
+
+/// The model; InvalidField "model" (unknown id), "form" (a form for a full BRDF), "params"
+/// (unknown parameter, value out of range) or "coef" (not > 0, or a full BRDF).
+Model make(const ModelSpec& spec, Spelling spelling);
+
+/// "rv" or "nh" as a Form; InvalidField "form" otherwise.
+Form form_named(std::string_view text, Spelling spelling);
+
+/// The lobe model `id` at exponent n, other parameters from `params`. InvalidField `field` when
+/// `id` is unknown or a full BRDF (`command` names what needs a lobe), "params" for a bad
+/// parameter, "n" for an n out of the model's range.
+Model lobe_model_at(std::string_view field, std::string_view command, std::string_view id,
+                    ParamValues params, double n, std::optional<Form> form, Spelling spelling);
+
+/// A model's metadata in JSON output: id, parameter values, and form and coef for lobe models.
+std::vector<std::pair<std::string, std::string>> model_meta(const Model& m);
+
+// ---- eval --------------------------------------------------------------------------------------
+
+/// Columns cos,value: value = k·F(c), or the bare lobe F(c). Lobe models only (else InvalidField
+/// "cos"); every c in [-1, 1] (else InvalidField "cos").
+io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool bare_lobe,
+                          Spelling spelling);
+
+/// Columns theta_o_deg,value: f(L, V) with N = +z, L at polar angle theta_i (azimuth 0) and V at
+/// (theta_o, phi_o), in degrees. InvalidField "theta_i" or "theta_o" outside [0, 90], "phi_o"
+/// outside [-360, 360].
+io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const double> theta_o_deg,
+                             double phi_o_deg, Spelling spelling);
+
+// ---- normalize ---------------------------------------------------------------------------------
+
+struct NormalizeQuery {
+  std::string model;
+  ParamValues params;              ///< every parameter but n
+  std::optional<Form> form;
+  std::vector<double> n;           ///< empty: the model's default n
+  std::string method = "auto";     ///< auto | exact | quadrature | both
+  std::string compare;             ///< another lobe model, or empty
+  std::string condition = "normal";  ///< normal | strict
+  double step = 1;                 ///< the strict condition's θ_i grid step, [0.01, 45] degrees
+};
+
+/// Columns n,coef (+ coef_quadrature,rel_diff for method both, + coef_compare,delta with compare).
+io::Table normalize_table(const NormalizeQuery& query, Spelling spelling);
+
+// ---- albedo ------------------------------------------------------------------------------------
+
+struct AlbedoQuery {
+  std::vector<double> theta_deg;     ///< each in [0, 90)
+  std::string method = "cubature";   ///< cubature | monte-carlo
+  std::uint64_t samples = 1'000'000;  ///< monte-carlo: per angle, [1, 1e9]
+  std::uint64_t seed = 1;
+};
+
+/// Columns theta_deg,albedo (+ standard_error for monte-carlo), angles computed in parallel.
+io::Table albedo_table(const Model& m, const AlbedoQuery& query, Spelling spelling);
+
+// ---- error -------------------------------------------------------------------------------------
+
+struct ErrorQuery {
+  std::string model;
+  ParamValues params;  ///< every parameter but n
+  std::string reference = "phong";
+  std::vector<double> n;
+  double zone = 0.5;   ///< (0, 1)
+};
+
+/// Columns n,max_abs,argmax_abs_deg,max_rel_epicenter,max_rel_attenuation of the bare lobes.
+io::Table error_table(const ErrorQuery& query, Spelling spelling);
+
+// ---- check -------------------------------------------------------------------------------------
+
+struct CheckQuery {
+  ModelSpec model;
+  std::string sweep;           ///< a parameter to sweep over `values`, or empty: one case
+  std::vector<double> values;
+  analysis::CheckOptions options;
+};
+
+struct CheckCase {
+  Model model;
+  analysis::CheckResult result;
+};
+
+/// One case per swept value (the swept parameter may not also be in model.params).
+/// InvalidField "sweep" (unknown parameter, also given in params), "pairs", "step", "grazing".
+std::vector<CheckCase> check_cases(const CheckQuery& query, Spelling spelling);
+
+/// The cases as a JSON array of objects (model metadata, albedos, verdicts).
+std::string check_json(const std::vector<CheckCase>& cases);
+
+// ---- glsl and models ---------------------------------------------------------------------------
+
+/// The model as a self-contained GLSL function with a comment saying how to call it
+/// (`specula glsl`). InvalidField "dialect" unless glsl330, gles300 or webgl2.
+std::string glsl_function(const Model& model, std::string_view dialect, Spelling spelling);
+
+/// Every model as a JSON array: id, name, kind, summary, source, parameters with their ranges,
+/// and form, normalization and coef formula for lobe models.
+std::string models_json();
+
+}  // namespace specula::queries

@@ -1,0 +1,74 @@
+#pragma once
+// The JSON API of `specula serve` without the HTTP transport: a request (method, path, body) in,
+// a response (status, content type, body) out. Every /api response is JSON; errors are
+// {"error": "...", "field": "..."} with 400 (bad field), 404 (unknown route or job), 405 (wrong
+// method), 413 (body too large) or 429 (too many fit jobs). Any other path is one of the page's
+// assets compiled into the binary, or 404. See docs/serve.md.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace specula::serve {
+
+/// The work one request may ask for. Requests beyond a limit get 400 naming the field.
+struct Limits {
+  std::size_t max_body_bytes = 64 * 1024;
+  std::size_t max_n = 2000;               ///< n values (normalize, error, fit from a model)
+  std::size_t max_strict_n = 50;          ///< n values with the strict condition (each a search)
+  std::size_t max_eval_points = 10'000;   ///< cosines or viewer angles
+  std::size_t max_albedo_angles = 200;
+  std::uint64_t max_monte_carlo_samples = 10'000'000;  ///< samples × angles
+  std::size_t max_check_cases = 50;
+  std::size_t max_check_pairs = 100'000;
+  int max_image_side = 2048;              ///< the scene shader's uniforms (glsl with shader: true)
+  std::size_t max_fit_rows = 2000;
+  double max_fit_seconds = 60;
+  std::int64_t max_fit_generations = 100'000;
+  int max_fit_size = 40;
+  int max_fit_population = 1000;
+  int max_fit_islands = 8;
+  std::size_t max_running_fits = 2;
+  std::size_t max_kept_fits = 16;         ///< finished jobs kept for polling; older ones are dropped
+};
+
+struct Request {
+  std::string method;  ///< GET, POST, DELETE, …
+  std::string path;    ///< decoded, without the query string
+  std::string body;
+};
+
+struct Response {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::vector<std::pair<std::string, std::string>> headers;
+};
+
+/// {"error": message, "field": field} (field left out when empty) with `status`.
+Response error_response(int status, const std::string& message, const std::string& field = {});
+
+class Api {
+ public:
+  explicit Api(Limits limits = {});
+  ~Api();  ///< cancels the fit jobs and waits for them
+  Api(const Api&) = delete;
+  Api& operator=(const Api&) = delete;
+
+  /// Routes one request; thread-safe, never throws (an unexpected exception is a 500).
+  Response handle(const Request& request);
+
+  /// Asks every running fit job to stop (they finish within one budget check).
+  void cancel_fits();
+
+  const Limits& limits() const noexcept;
+
+  struct State;  ///< the routes and the fit jobs (src/serve/api.cpp)
+
+ private:
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace specula::serve

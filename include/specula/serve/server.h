@@ -1,0 +1,38 @@
+#pragma once
+// `specula serve`: the Api over HTTP (cpp-httplib), on one address, until stop().
+#include <memory>
+#include <string>
+
+#include "specula/serve/api.h"
+
+namespace specula::serve {
+
+class Server {
+ public:
+  explicit Server(Limits limits = {});
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  /// Binds `host`:`port` (port 0: a free port) and returns the port bound; InvalidArgument when
+  /// the address cannot be bound.
+  int bind(const std::string& host, int port);
+  /// Serves requests until stop(); call after bind().
+  void run();
+  /// Stops listening, cancels the fit jobs; safe from any thread, also before run().
+  void stop();
+  /// True while run() is accepting connections.
+  bool running() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// True for addresses only this machine can reach: localhost, 127.0.0.0/8, ::1.
+bool is_loopback(const std::string& host);
+
+/// "http://HOST:PORT/" (an IPv6 host in brackets).
+std::string url_of(const std::string& host, int port);
+
+}  // namespace specula::serve

@@ -1,0 +1,306 @@
+#include "specula/queries/queries.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "specula/analysis/albedo.h"
+#include "specula/analysis/error.h"
+#include "specula/analysis/monte_carlo.h"
+#include "specula/analysis/parallel.h"
+#include "specula/brdf/directions.h"
+#include "specula/error.h"
+#include "specula/gl/glsl.h"
+#include "specula/io/values.h"
+#include "specula/normalize/normalize.h"
+
+namespace specula::queries {
+namespace {
+
+[[noreturn]] void fail(std::string_view key, const std::string& message) {
+  throw InvalidField(std::string(key), message);
+}
+
+/// Runs `work`; an InvalidArgument it throws becomes an InvalidField for `key`, same message.
+template <class Work>
+auto for_field(std::string_view key, Work&& work) {
+  try {
+    return work();
+  } catch (const InvalidField&) {
+    throw;
+  } catch (const InvalidArgument& e) {
+    fail(key, e.what());
+  }
+}
+
+void require_member(std::string_view key, const std::string& value,
+                    std::initializer_list<std::string_view> allowed, Spelling spelling) {
+  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+    fail(key, fmt::format("{} must be one of {}, got '{}'", spelled(key, spelling),
+                          fmt::join(allowed, ", "), value));
+}
+
+void require_degrees(std::string_view key, double degrees, double low, double high, Spelling spelling) {
+  if (!(degrees >= low && degrees <= high))  // NaN too
+    fail(key, fmt::format("{} {} is outside [{}, {}] degrees", spelled(key, spelling), degrees, low, high));
+}
+
+normalize::Method method_of(const std::string& method) {
+  if (method == "exact" || method == "both") return normalize::Method::exact;
+  if (method == "quadrature") return normalize::Method::quadrature;
+  return normalize::Method::automatic;
+}
+
+void require_no_n(const ParamValues& params, Spelling spelling) {
+  if (params.contains("n"))
+    fail("params", fmt::format("give n with {}, not {}", spelled("n", spelling), spelled("params", spelling)));
+}
+
+/// The default n of a lobe model (InvalidField "model" for a full BRDF).
+double default_n(const std::string& id) {
+  const Model m = for_field("model", [&] { return make_model(id); });
+  if (!m.is_lobe()) fail("model", fmt::format("normalize works on lobe models; '{}' is a full BRDF", id));
+  return m.param("n");
+}
+
+void check_options(const analysis::CheckOptions& o, Spelling spelling) {
+  if (o.reciprocity_pairs < 1 || o.reciprocity_pairs > 100'000'000)
+    fail("pairs", fmt::format("{} {} is outside [1, 100000000]", spelled("pairs", spelling), o.reciprocity_pairs));
+  if (!(o.grid_step_deg >= 0.01 && o.grid_step_deg <= 45))
+    fail("step", fmt::format("{} {} is outside [0.01, 45] degrees", spelled("step", spelling), o.grid_step_deg));
+  if (o.grazing_deg.empty()) fail("grazing", fmt::format("{} is empty", spelled("grazing", spelling)));
+  for (const double g : o.grazing_deg)
+    for_field("grazing", [&] { analysis::require_incidence_deg(g, spelled("grazing", spelling).c_str()); });
+}
+
+}  // namespace
+
+std::string spelled(std::string_view key, Spelling spelling) {
+  if (spelling == Spelling::key) return std::string(key);
+  if (key == "params") return "--param";
+  std::string option = "--";
+  for (const char ch : key) option += ch == '_' ? '-' : ch;
+  return option;
+}
+
+Model make(const ModelSpec& spec, Spelling) {
+  for_field("model", [&] { return make_model(spec.id); });
+  Model m = for_field("params", [&] { return make_model(spec.id, spec.params); });
+  if (spec.form) m = for_field("form", [&] { return make_model(spec.id, spec.params, spec.form); });
+  if (spec.coef) m = for_field("coef", [&] { return m.with_coef(*spec.coef); });
+  return m;
+}
+
+Form form_named(std::string_view text, Spelling) {
+  return for_field("form", [&] { return parse_form(text); });
+}
+
+Model lobe_model_at(std::string_view field, std::string_view command, std::string_view id,
+                    ParamValues params, double n, std::optional<Form> form, Spelling spelling) {
+  if (!for_field(field, [&] { return make_model(id); }).is_lobe())
+    fail(field, fmt::format("{} works on lobe models; '{}' is a full BRDF", command, id));
+  make(ModelSpec{std::string(id), params, form, std::nullopt}, spelling);
+  params["n"] = n;
+  return for_field("n", [&] { return make_model(id, params, form); });
+}
+
+std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
+  std::vector<std::pair<std::string, std::string>> meta{{"model", std::string(m.id())}};
+  for (std::size_t i = 0; i < m.params().size(); ++i)
+    meta.emplace_back(std::string(m.info().params[i].name), io::format_number(m.params()[i]));
+  if (m.is_lobe()) {
+    meta.emplace_back("form", to_string(m.form()));
+    meta.emplace_back("coef", io::format_number(m.coef()));
+  }
+  return meta;
+}
+
+io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool bare_lobe,
+                          Spelling spelling) {
+  if (!m.is_lobe())
+    fail("cos", fmt::format("model '{}' is a full BRDF: give directions with {} and {}", m.id(),
+                            spelled("theta_i", spelling), spelled("theta_o", spelling)));
+  io::Table table{{"cos", "value"}, {}, model_meta(m)};
+  for (const double c : cosines) {
+    if (!(c >= -1 && c <= 1))  // NaN too
+      fail("cos", fmt::format("{} {} is outside [-1, 1]", spelled("cos", spelling), c));
+    table.rows.push_back({c, bare_lobe ? lobes::eval(m.lobe(), c) : m.at_cos(c)});
+  }
+  return table;
+}
+
+io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const double> theta_o_deg,
+                             double phi_o_deg, Spelling spelling) {
+  require_degrees("theta_i", theta_i_deg, 0, 90, spelling);
+  require_degrees("phi_o", phi_o_deg, -360, 360, spelling);
+  const Vec3 n{0, 0, 1};
+  const Vec3 l = from_spherical(radians(theta_i_deg), 0.0);
+  io::Table table{{"theta_o_deg", "value"}, {}, model_meta(m)};
+  table.meta.emplace_back("theta_i_deg", io::format_number(theta_i_deg));
+  table.meta.emplace_back("phi_o_deg", io::format_number(phi_o_deg));
+  for (const double theta_o : theta_o_deg) {
+    require_degrees("theta_o", theta_o, 0, 90, spelling);
+    table.rows.push_back({theta_o, m(n, l, from_spherical(radians(theta_o), radians(phi_o_deg)))});
+  }
+  return table;
+}
+
+io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
+  require_no_n(q.params, spelling);
+  require_member("method", q.method, {"auto", "exact", "quadrature", "both"}, spelling);
+  require_member("condition", q.condition, {"normal", "strict"}, spelling);
+  if (!(q.step >= 0.01 && q.step <= 45))
+    fail("step", fmt::format("{} {} is outside [0.01, 45] degrees", spelled("step", spelling), q.step));
+  const bool both = q.method == "both";
+  const bool strict = q.condition == "strict";
+  if (strict && (q.method == "exact" || both))
+    fail("method", fmt::format("the strict condition has no closed form: drop {} or use quadrature",
+                               spelled("method", spelling)));
+  const normalize::Method method = method_of(q.method);
+  const std::vector<double> ns = q.n.empty() ? std::vector<double>{default_n(q.model)} : q.n;
+
+  io::Table table{{"n", "coef"}, {}, {{"model", q.model}, {"method", q.method}, {"condition", q.condition}}};
+  if (both) table.columns.insert(table.columns.end(), {"coef_quadrature", "rel_diff"});
+  if (!q.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
+  for (const double n : ns) {
+    const Model m = lobe_model_at("model", "normalize", q.model, q.params, n, q.form, spelling);
+    if (table.meta.size() == 3) table.meta.emplace_back("form", to_string(m.form()));
+    const double coef = strict ? analysis::strict_coefficient(m, q.step)
+                               : for_field("method", [&] { return normalize::coefficient(m.lobe(), m.form(), method); });
+    std::vector<double> row{n, coef};
+    if (both) {
+      const double quadrature = normalize::quadrature(m.lobe(), m.form());
+      row.insert(row.end(), {quadrature, (quadrature - coef) / coef});
+    }
+    if (!q.compare.empty()) {
+      const double other =
+          lobe_model_at("compare", spelled("compare", spelling), q.compare, {}, n, std::nullopt, spelling).coef();
+      row.insert(row.end(), {other, (other - coef) / coef});  // k_other·2π·Int − 1
+    }
+    table.rows.push_back(std::move(row));
+  }
+  if (!q.compare.empty()) table.meta.emplace_back("compare", q.compare);
+  return table;
+}
+
+io::Table albedo_table(const Model& m, const AlbedoQuery& q, Spelling spelling) {
+  for (const double d : q.theta_deg)
+    for_field("theta", [&] { analysis::require_incidence_deg(d, spelled("theta", spelling).c_str()); });
+  require_member("method", q.method, {"cubature", "monte-carlo"}, spelling);
+  if (q.samples < 1 || q.samples > 1'000'000'000)
+    fail("samples", fmt::format("{} {} is outside [1, 1000000000]", spelled("samples", spelling), q.samples));
+  const bool monte_carlo = q.method == "monte-carlo";
+  io::Table table{{"theta_deg", "albedo"}, {}, model_meta(m)};
+  table.meta.emplace_back("method", q.method);
+  if (monte_carlo) table.columns.push_back("standard_error");
+  const auto rows = analysis::parallel_map(std::span<const double>(q.theta_deg), [&](double deg) {
+    if (!monte_carlo) return std::vector<double>{deg, analysis::albedo(m, radians(deg)).value};
+    const auto e = analysis::albedo_monte_carlo(m, radians(deg), q.samples, q.seed);
+    return std::vector<double>{deg, e.mean, e.standard_error};
+  });
+  table.rows.assign(rows.begin(), rows.end());
+  return table;
+}
+
+io::Table error_table(const ErrorQuery& q, Spelling spelling) {
+  require_no_n(q.params, spelling);
+  if (!(q.zone > 0 && q.zone < 1))
+    fail("zone", fmt::format("{} {} is outside (0, 1)", spelled("zone", spelling), q.zone));
+  auto lobe_of = [&](std::string_view field, std::string_view id, const ParamValues& params, double n) {
+    return lobe_model_at(field, "error", id, params, n, std::nullopt, spelling).lobe();
+  };
+  for (const double n : q.n) lobe_of("model", q.model, q.params, n), lobe_of("reference", q.reference, {}, n);
+  io::Table table{{"n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"},
+                  {},
+                  {{"model", q.model}, {"reference", q.reference}, {"zone", io::format_number(q.zone)}}};
+  const auto rows = analysis::parallel_map(std::span<const double>(q.n), [&](double n) {
+    const auto e = analysis::approximation_error(lobe_of("model", q.model, q.params, n),
+                                                 lobe_of("reference", q.reference, {}, n), q.zone);
+    return std::vector<double>{n, e.max_abs, e.argmax_abs_deg, e.max_rel_epicenter, e.max_rel_attenuation};
+  });
+  table.rows.assign(rows.begin(), rows.end());
+  return table;
+}
+
+std::vector<CheckCase> check_cases(const CheckQuery& q, Spelling spelling) {
+  check_options(q.options, spelling);
+  if (q.sweep.empty()) {
+    Model m = make(q.model, spelling);
+    return {{m, analysis::check(m, q.options)}};
+  }
+  const Model defaults = make(q.model, spelling);
+  if (!defaults.info().find_param(q.sweep))
+    fail("sweep", fmt::format("model '{}' has no parameter '{}' to sweep", q.model.id, q.sweep));
+  if (q.model.params.contains(q.sweep))
+    fail("sweep", fmt::format("{} is swept; do not also give it with {}", q.sweep, spelled("params", spelling)));
+  std::vector<CheckCase> cases;
+  for (const double v : q.values) {
+    ModelSpec at = q.model;
+    at.params[q.sweep] = v;
+    const Model m = for_field("sweep", [&] { return make(at, spelling); });
+    cases.push_back({m, analysis::check(m, q.options)});
+  }
+  return cases;
+}
+
+std::string check_json(const std::vector<CheckCase>& cases) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& [m, r] : cases) {
+    nlohmann::ordered_json entry;
+    for (const auto& [key, value] : model_meta(m)) entry[key] = value;
+    entry["albedo_normal"] = r.albedo_normal;
+    entry["max_albedo"] = r.max_albedo.value;
+    entry["max_albedo_theta_deg"] = r.max_albedo.theta_deg;
+    entry["max_asymmetry"] = r.max_asymmetry;
+    entry["pairs"] = r.pairs;
+    entry["min_value"] = r.min_value;
+    entry["conserves_energy"] = r.conserves_energy;
+    entry["reciprocal"] = r.reciprocal;
+    entry["non_negative"] = r.non_negative;
+    list.push_back(std::move(entry));
+  }
+  return list.dump(2) + "\n";
+}
+
+std::string glsl_function(const Model& model, std::string_view dialect_name, Spelling) {
+  const gl::Dialect dialect = for_field("dialect", [&] { return gl::parse_dialect(dialect_name); });
+  std::string params;
+  for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
+  const auto p = gl::model_params(model);
+  const std::string call = fmt::format("vec4({}, {}, {}, {})", gl::float_literal(p[0]), gl::float_literal(p[1]),
+                                       gl::float_literal(p[2]), gl::float_literal(p[3]));
+  return fmt::format(
+      "// specula glsl:{}\n"
+      "// For {} (no #version here: paste into a shader that has one). N, L, V: unit vectors,\n"
+      "// L toward the light, V toward the viewer. At these parameters:\n"
+      "//   float f = specula_brdf(N, L, V, {});\n{}",
+      params, dialect == gl::Dialect::glsl330 ? "GLSL 3.30 core" : gl::to_string(dialect) + std::string(" (GLSL ES 3.00)"),
+      call, gl::model_glsl(model));
+}
+
+std::string models_json() {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& m : models()) {
+    nlohmann::ordered_json params = nlohmann::ordered_json::array();
+    for (const auto& p : m.params)
+      params.push_back({{"name", p.name},
+                        {"default", p.default_value},
+                        {"min", p.min},
+                        {"max", p.max},
+                        {"min_exclusive", p.min_exclusive},
+                        {"meaning", p.meaning}});
+    nlohmann::ordered_json entry = {{"id", m.id},         {"name", m.name},
+                                    {"kind", to_string(m.kind)}, {"summary", m.summary},
+                                    {"source", m.source}, {"params", params}};
+    if (m.kind == ModelKind::lobe) {
+      entry["form"] = to_string(m.form);
+      entry["normalization"] = to_string(m.normalization);
+      entry["coef"] = m.coef_formula;
+    }
+    list.push_back(std::move(entry));
+  }
+  return list.dump(2) + "\n";
+}
+
+}  // namespace specula::queries

@@ -1,0 +1,159 @@
+#include "endpoints.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "fields.h"
+#include "specula/error.h"
+#include <cmath>
+
+#include "specula/gl/glsl.h"
+#include "specula/gl/scene_shader.h"
+#include "specula/render/scene.h"
+#include "specula/queries/queries.h"
+
+namespace specula::serve {
+namespace {
+
+constexpr auto kKey = queries::Spelling::key;
+
+[[noreturn]] void fail(std::string_view field, const std::string& message) {
+  throw InvalidField(std::string(field), message);
+}
+
+/// The cap on n values: fewer when each is a search of its own (the strict condition).
+std::size_t n_cap(const Fields& f, const Limits& limits) {
+  return f.text_or("condition", "normal") == "strict" ? limits.max_strict_n : limits.max_n;
+}
+
+}  // namespace
+
+std::string models_endpoint() { return queries::models_json(); }
+
+std::string eval_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "cos", "lobe", "theta_i", "theta_o", "phi_o"});
+  const Model m = queries::make(f.model(), kKey);
+  if (f.has("cos")) {
+    if (f.has("theta_i") || f.has("theta_o"))
+      fail("cos", "give cos (lobe models) or theta_i and theta_o (any model), not both");
+    return io::to_json(queries::eval_at_cosines(m, f.values("cos", limits.max_eval_points), f.flag_or("lobe", false), kKey));
+  }
+  if (!f.has("theta_i") && !f.has("theta_o")) fail("cos", "give cos (lobe models) or theta_i and theta_o (any model)");
+  if (f.has("lobe")) fail("lobe", "lobe applies to cos only");
+  const double theta_i = f.number("theta_i");
+  const auto theta_o = f.values("theta_o", limits.max_eval_points);
+  return io::to_json(queries::eval_at_directions(m, theta_i, theta_o, f.number_or("phi_o", 0), kKey));
+}
+
+std::string normalize_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "n", "method", "compare", "condition", "step"});
+  queries::NormalizeQuery q;
+  q.model = f.text("model");
+  q.params = f.params();
+  if (f.has("form")) q.form = queries::form_named(f.text("form"), kKey);
+  if (f.has("n")) q.n = f.values("n", n_cap(f, limits));
+  q.method = f.text_or("method", q.method);
+  q.compare = f.text_or("compare", "");
+  q.condition = f.text_or("condition", q.condition);
+  q.step = f.number_or("step", q.step);
+  return io::to_json(queries::normalize_table(q, kKey));
+}
+
+std::string albedo_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "theta", "method", "samples", "seed"});
+  const Model m = queries::make(f.model(), kKey);
+  queries::AlbedoQuery q;
+  q.theta_deg = f.values_or("theta", "0:80:10,85,89", limits.max_albedo_angles);
+  q.method = f.text_or("method", q.method);
+  q.samples = static_cast<std::uint64_t>(f.integer_or("samples", 100'000, 1, 1'000'000'000));
+  q.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
+  if (q.method == "monte-carlo" && q.samples * q.theta_deg.size() > limits.max_monte_carlo_samples)
+    fail("samples", fmt::format("samples × angles = {} exceeds {} per request",
+                                q.samples * q.theta_deg.size(), limits.max_monte_carlo_samples));
+  return io::to_json(queries::albedo_table(m, q, kKey));
+}
+
+std::string check_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "n", "sweep", "values", "pairs", "seed", "step", "grazing"});
+  if (f.has("n") && f.has("sweep")) fail("sweep", "give n or sweep and values, not both");
+  if (f.has("values") && !f.has("sweep")) fail("values", "values needs sweep (the parameter they are for)");
+  // n: [...] is sweep "n" over those values.
+  const std::string sweep = f.has("n") ? std::string(1, 'n') : f.text_or("sweep", "");
+  queries::CheckQuery q{f.model(), sweep, {}, {}};
+  if (!sweep.empty()) q.values = f.values(f.has("n") ? "n" : "values", limits.max_check_cases);
+  q.options.reciprocity_pairs = static_cast<std::size_t>(
+      f.integer_or("pairs", static_cast<std::int64_t>(q.options.reciprocity_pairs), 1,
+                   static_cast<std::int64_t>(limits.max_check_pairs)));
+  q.options.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
+  q.options.grid_step_deg = f.number_or("step", q.options.grid_step_deg);
+  if (f.has("grazing")) q.options.grazing_deg = f.values("grazing", 10);
+  return queries::check_json(queries::check_cases(q, kKey));
+}
+
+std::string error_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "reference", "n", "zone"});
+  queries::ErrorQuery q;
+  q.model = f.text("model");
+  q.params = f.params();
+  q.reference = f.text_or("reference", q.reference);
+  q.n = f.values_or("n", "1:1000@50:log", limits.max_n);
+  q.zone = f.number_or("zone", q.zone);
+  return io::to_json(queries::error_table(q, kKey));
+}
+
+namespace {
+
+/// The default comparison scene (render/scene.h: a unit sphere, one directional light) with the
+/// light toward `light` if given, at `size` pixels, in display values (sRGB, no tone map).
+nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits& limits) {
+  render::Scene scene = render::default_scene(m);
+  if (f.has("light")) {
+    const auto light = f.values("light", 3);
+    if (light.size() != 3 || (light[0] == 0 && light[1] == 0 && light[2] == 0))
+      fail("light", "light must be a non-zero direction [x, y, z] toward the light");
+    scene.lights[0].direction = {light[0], light[1], light[2]};
+  }
+  const auto size = f.values_or("size", "256,256", 2);
+  if (size.size() != 2 || size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]) ||
+      size[0] < 1 || size[1] < 1 || size[0] > static_cast<double>(limits.max_image_side) ||
+      size[1] > static_cast<double>(limits.max_image_side))
+    fail("size", fmt::format("size must be [width, height], whole numbers in [1, {}]", limits.max_image_side));
+  const gl::SceneUniforms u = gl::scene_uniforms(
+      scene, {static_cast<int>(size[0]), static_cast<int>(size[1])}, render::Display{});
+  return {{"u_resolution", u.resolution}, {"u_pixel_offset", std::array<float, 2>{0, 0}},
+          {"u_eye", u.eye}, {"u_forward", u.forward}, {"u_right", u.right}, {"u_up", u.up},
+          {"u_sphere_count", u.spheres.size()}, {"u_spheres", u.spheres},
+          {"u_light_count", u.lights.size()}, {"u_lights", u.lights}, {"u_light_irradiance", u.light_irradiance},
+          {"u_diffuse", u.diffuse}, {"u_specular", u.specular}, {"u_ambient", u.ambient},
+          {"u_background", u.background}, {"u_model_params", u.model_params},
+          {"u_triangle_count", u.triangle_count}, {"u_display", u.display}, {"u_exposure", u.exposure},
+          {"u_tone_map", u.tone_map}};
+}
+
+}  // namespace
+
+std::string glsl_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "dialect", "shader", "light", "size"});
+  const Model m = queries::make(f.model(), kKey);
+  const std::string dialect = f.text_or("dialect", "webgl2");
+  const std::string function = queries::glsl_function(m, dialect, kKey);
+  const gl::Dialect parsed = gl::parse_dialect(dialect);
+  nlohmann::ordered_json out;
+  for (const auto& [key, value] : queries::model_meta(m)) out[key] = value;
+  out["dialect"] = dialect;
+  out["entry"] = "specula_brdf";
+  out["entry_params"] = gl::model_params(m);
+  out["version_header"] = gl::version_header(parsed);
+  out["function"] = function;
+  const bool shader = f.flag_or("shader", false);
+  if (!shader && (f.has("light") || f.has("size"))) fail(f.has("light") ? "light" : "size", "light and size go with shader: true");
+  if (shader) {
+    // The comparison sphere as `specula render --backend gl` draws it (gl/scene_shader.h).
+    out["vertex_shader"] = gl::scene_vertex_shader(parsed);
+    out["fragment_shader"] = gl::scene_fragment_shader(m, parsed, gl::SceneGeometry::spheres);
+    out["uniforms"] = scene_json(m, f, limits);
+  }
+  return out.dump(2) + "\n";
+}
+
+}  // namespace specula::serve

@@ -1,0 +1,19 @@
+#pragma once
+// The analysis endpoints: each reads its JSON body (throwing InvalidField naming a bad field),
+// runs the shared query the CLI runs, and returns the JSON text of the answer.
+#include <string>
+#include <string_view>
+
+#include "specula/serve/api.h"
+
+namespace specula::serve {
+
+std::string models_endpoint();
+std::string eval_endpoint(std::string_view body, const Limits& limits);
+std::string normalize_endpoint(std::string_view body, const Limits& limits);
+std::string albedo_endpoint(std::string_view body, const Limits& limits);
+std::string check_endpoint(std::string_view body, const Limits& limits);
+std::string error_endpoint(std::string_view body, const Limits& limits);
+std::string glsl_endpoint(std::string_view body, const Limits& limits);
+
+}  // namespace specula::serve

@@ -1,0 +1,290 @@
+#include "fit_jobs.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "fields.h"
+#include "specula/error.h"
+#include "specula/fit/emit.h"
+#include "specula/fit/fit.h"
+#include "specula/normalize/normalize.h"
+
+namespace specula::serve {
+
+/// One search: its inputs, fixed at start, and what the search has reported so far.
+struct FitJobs::Job {
+  std::int64_t id = 0;
+  std::string target;
+  std::string source;  ///< where the data came from, for the emitted functions' comment
+  fit::Data data;
+  fit::Options options;
+  std::atomic<bool> cancel{false};
+  std::atomic<bool> finished{false};
+
+  mutable std::mutex mutex;  // guards what follows
+  std::string state = "running";  ///< running | done | cancelled | failed
+  std::string error;
+  fit::Progress progress;
+  std::vector<fit::Candidate> front;
+  std::optional<std::size_t> chosen;
+  std::string stopped_by;
+};
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+using Job = FitJobs::Job;
+
+[[noreturn]] void fail(std::string_view field, const std::string& message) {
+  throw InvalidField(std::string(field), message);
+}
+
+void require_identifier(std::string_view field, const std::string& name) {
+  const bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                  std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!ok || expr::function_named(name))
+    fail(field, fmt::format("'{}' cannot name a variable: use letters, digits and _, not a function name", name));
+  for (const char* language : {"cpp", "glsl"}) {
+    try {
+      fit::check_emittable({name}, language);
+    } catch (const InvalidArgument& e) {
+      fail(field, e.what());
+    }
+  }
+}
+
+std::vector<double> column(const Fields& columns, const std::string& name, const Limits& limits) {
+  return columns.values(name, limits.max_fit_rows);
+}
+
+/// {"data": {"columns": {name: [numbers]}, "target": name, "vars": [names]}}
+void read_data(const Fields& f, Job& job, const Limits& limits) {
+  const Fields d = f.object("data", {"columns", "target", "vars"});
+  const auto& raw_columns = d.raw("columns");
+  if (!raw_columns.is_object() || raw_columns.empty())
+    fail("data.columns", "data.columns must be an object of named columns, such as {\"n\": [1, 2], \"coef\": [0.48, 0.66]}");
+  std::set<std::string, std::less<>> names;
+  for (const auto& [name, values] : raw_columns.items()) names.insert(name);
+  const Fields columns = d.object("columns", names);
+  job.target = d.text("target");
+  if (!names.contains(job.target)) fail("data.target", fmt::format("data.target '{}' is not a column", job.target));
+  std::vector<std::string> vars;
+  if (d.has("vars")) {
+    vars = d.names("vars");
+  } else {
+    for (const auto& name : names)
+      if (name != job.target) vars.push_back(name);
+  }
+  if (vars.empty()) fail("data.vars", "no variable columns besides the target");
+  job.data.target = column(columns, job.target, limits);
+  for (const auto& name : vars) {
+    if (!names.contains(name)) fail("data.vars", fmt::format("data.vars: '{}' is not a column", name));
+    if (name == job.target) fail("data.vars", fmt::format("'{}' is both the target and a variable", name));
+    require_identifier("data.vars", name);
+    job.data.variables.push_back(name);
+    job.data.columns.push_back(column(columns, name, limits));
+    if (job.data.columns.back().size() != job.data.target.size())
+      fail("data.columns", fmt::format("data.columns: '{}' has {} values, '{}' has {}", name,
+                                       job.data.columns.back().size(), job.target, job.data.target.size()));
+  }
+  job.source = "data";
+}
+
+/// {"model": id, "params": {…}, "form": …, "n": range, "round": digits}: the model's exact
+/// coefficient k(n) (as `specula normalize` prints it) to fit as a function of n.
+void read_model(const Fields& f, Job& job, const Limits& limits) {
+  const queries::ModelSpec spec = f.model(false);
+  if (spec.params.contains("n")) fail("params", "give n with n, not params");
+  const auto ns = f.values_or("n", "paper50", limits.max_n);
+  const int digits = static_cast<int>(f.integer_or("round", -1, 0, 17));  // -1: not rounded
+  job.target = "coef";
+  job.data.variables = {"n"};
+  job.data.columns = {ns};
+  for (const double n : ns) {
+    const Model m = queries::lobe_model_at("model", "fit", spec.id, spec.params, n, spec.form, queries::Spelling::key);
+    double k = normalize::coefficient(m.lobe(), m.form());
+    if (digits >= 0) k = std::stod(io::format_number(k, digits));
+    job.data.target.push_back(k);
+  }
+  job.source = fmt::format("{} normalization", spec.id);
+}
+
+template <class Parse>
+auto parsed(const Fields& f, std::string_view key, std::string_view fallback, Parse parse) {
+  const std::string text = f.text_or(key, std::string(fallback));
+  try {
+    return parse(text);
+  } catch (const InvalidArgument& e) {
+    fail(key, fmt::format("{}: {}", key, e.what()));
+  }
+}
+
+void read_options(const Fields& f, fit::Options& o, const Limits& limits) {
+  o.operators = parsed(f, "ops", "+,*,/", fit::parse_operators);
+  o.constants = parsed(f, "constants", "fitted", fit::parse_constants);
+  o.weights = parsed(f, "size_weights", "default", fit::SizeWeights::parse);
+  o.metric = parsed(f, "metric", "rms", fit::parse_metric);
+  o.choice = parsed(f, "choose", "parsimonious", fit::parse_choice);
+  o.max_size = static_cast<int>(f.integer_or("max_size", o.max_size, 1, limits.max_fit_size));
+  o.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
+  o.max_generations = f.integer_or("generations", 200, 0, limits.max_fit_generations);
+  o.time_limit_s = f.number_or("time", limits.max_fit_seconds);
+  if (!(o.time_limit_s > 0 && o.time_limit_s <= limits.max_fit_seconds))
+    fail("time", fmt::format("time {} is outside (0, {}] seconds", o.time_limit_s, limits.max_fit_seconds));
+  o.population = static_cast<int>(f.integer_or("population", o.population, 4, limits.max_fit_population));
+  o.islands = static_cast<int>(f.integer_or("islands", o.islands, 1, limits.max_fit_islands));
+  o.enumerate_max_size = static_cast<int>(f.integer_or("enumerate_size", o.enumerate_max_size, 0, 15));
+  o.test_fraction = f.number_or("test_fraction", 0);
+  if (!(o.test_fraction >= 0 && o.test_fraction < 1))
+    fail("test_fraction", fmt::format("test_fraction {} is outside [0, 1)", o.test_fraction));
+  o.threads = 1;  // a job never takes more than one core from the requests
+}
+
+Json candidate_json(const fit::Candidate& c, const Job& job) {
+  const std::string origin = fmt::format("specula fit: {} from {}, size {}, train {} {:.6g}", job.target,
+                                         job.source, c.size, fit::metric_name(job.options.metric), c.train_error);
+  return Json{{"size", c.size},
+              {"train_error", std::isfinite(c.train_error) ? Json(c.train_error) : Json()},
+              {"test_error", c.test_error && std::isfinite(*c.test_error) ? Json(*c.test_error) : Json()},
+              {"formula", expr::to_infix(c.formula)},
+              {"display", expr::to_infix(fit::rounded(c.formula, 6))},
+              {"cpp", fit::emit_function(c.formula, "cpp", job.target, origin)},
+              {"glsl", fit::emit_function(c.formula, "glsl", job.target, origin)}};
+}
+
+std::string status_json(const Job& job) {
+  const std::lock_guard lock(job.mutex);
+  Json out{{"job", job.id}, {"state", job.state}, {"target", job.target},
+           {"variables", job.data.variables}, {"rows", job.data.target.size()},
+           {"elapsed_s", job.progress.elapsed_s}, {"time_left_s", job.progress.time_left_s},
+           {"evaluations", job.progress.evaluations}, {"generations", job.progress.generations},
+           {"front", Json::array()}};
+  for (const auto& c : job.front) out["front"].push_back(candidate_json(c, job));
+  out["chosen"] = job.chosen ? Json(*job.chosen) : Json();
+  out["stopped_by"] = job.stopped_by.empty() ? Json() : Json(job.stopped_by);
+  if (!job.error.empty()) out["error"] = job.error;
+  return out.dump(2) + "\n";
+}
+
+void run_job(Job& job) {
+  try {
+    const fit::Result result = fit::search(job.data, job.options, [&job](const fit::Progress& p) {
+      const std::lock_guard lock(job.mutex);
+      job.progress = p;
+      job.progress.front = nullptr;
+      job.front = *p.front;
+    });
+    const std::lock_guard lock(job.mutex);
+    job.front = result.front;
+    job.chosen = result.chosen;
+    job.stopped_by = result.stopped_by;
+    job.progress.elapsed_s = result.seconds;
+    job.progress.evaluations = result.evaluations;
+    job.progress.generations = result.generations;
+    job.state = result.stopped_by == "cancelled" ? "cancelled" : "done";
+  } catch (const std::exception& e) {
+    const std::lock_guard lock(job.mutex);
+    job.state = "failed";
+    job.error = e.what();
+  }
+  job.finished = true;
+}
+
+}  // namespace
+
+FitJobs::~FitJobs() {
+  cancel_all();
+  const std::lock_guard lock(mutex_);
+  for (auto& w : workers_) w.thread.join();
+}
+
+std::int64_t FitJobs::start(std::string_view body) {
+  const Fields f(body, {"data", "model", "params", "form", "n", "round", "ops", "constants", "size_weights",
+                        "metric", "choose", "max_size", "seed", "generations", "time", "population",
+                        "islands", "enumerate_size", "test_fraction"});
+  auto job = std::make_shared<Job>();
+  if (f.has("data") == f.has("model")) fail("data", "give data (columns to fit) or model (to fit its normalization), one of them");
+  if (f.has("data")) {
+    for (const char* key : {"params", "form", "n", "round"})
+      if (f.has(key)) fail(key, fmt::format("{} goes with model, not with data", key));
+    read_data(f, *job, limits_);
+  } else {
+    read_model(f, *job, limits_);
+  }
+  read_options(f, job->options, limits_);
+  job->options.cancel = &job->cancel;
+
+  const std::lock_guard lock(mutex_);
+  reap_finished();
+  if (running() >= limits_.max_running_fits) throw TooManyFits{running()};
+  job->id = next_id_++;
+  jobs_[job->id] = job;
+  workers_.push_back({job, std::thread([job] { run_job(*job); })});
+  forget_oldest_done();
+  return job->id;
+}
+
+std::optional<std::string> FitJobs::status(std::int64_t id) const {
+  std::shared_ptr<Job> job;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end()) return std::nullopt;
+    job = it->second;
+  }
+  return status_json(*job);
+}
+
+std::optional<std::string> FitJobs::cancel(std::int64_t id) {
+  std::shared_ptr<Job> job;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end()) return std::nullopt;
+    job = it->second;
+    jobs_.erase(it);
+  }
+  job->cancel = true;
+  {
+    const std::lock_guard lock(job->mutex);
+    if (job->state == "running") job->state = "cancelled";
+  }
+  return status_json(*job);
+}
+
+void FitJobs::cancel_all() {
+  const std::lock_guard lock(mutex_);
+  for (auto& w : workers_) w.job->cancel = true;
+}
+
+void FitJobs::reap_finished() {
+  std::erase_if(workers_, [](Worker& w) {
+    if (!w.job->finished) return false;
+    w.thread.join();
+    return true;
+  });
+}
+
+std::size_t FitJobs::running() const {
+  return static_cast<std::size_t>(std::count_if(workers_.begin(), workers_.end(), [](const Worker& w) { return !w.job->finished; }));
+}
+
+void FitJobs::forget_oldest_done() {
+  std::size_t done = 0;
+  for (const auto& [id, job] : jobs_) done += job->finished ? 1 : 0;
+  for (auto it = jobs_.begin(); it != jobs_.end() && done > limits_.max_kept_fits;) {
+    if (it->second->finished) {
+      it = jobs_.erase(it);
+      --done;
+    } else {
+      ++it;
+    }
+  }
+}
+
+}  // namespace specula::serve

@@ -1,0 +1,179 @@
+// `specula serve` under load and over time: many clients at once get the answers one client gets
+// alone; fit jobs start, report a growing front, finish or are cancelled, and stop with the server.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fmt/format.h>
+#include <thread>
+
+#include "serve_support.h"
+#include "specula/expr/expr.h"
+
+namespace specula::serve {
+namespace {
+
+using json = nlohmann::json;
+using specula::testing::Answer;
+using specula::testing::del;
+using specula::testing::get;
+using specula::testing::post;
+using specula::testing::TestServer;
+using ::testing::HasSubstr;
+
+struct Call {
+  std::string path;
+  std::string body;  ///< empty: GET
+};
+
+Answer send(int port, const Call& c) { return c.body.empty() ? get(port, c.path) : post(port, c.path, c.body); }
+
+const std::vector<Call>& mixed_calls() {
+  static const std::vector<Call> calls{
+      {"/api/models", ""},
+      {"/api/normalize", R"({"model": "log", "n": "1:1000@20:log", "method": "both"})"},
+      {"/api/eval", R"({"model": "log-normalized", "params": {"n": 50}, "cos": "0.9:1@50"})"},
+      {"/api/eval", R"({"model": "ggx", "theta_i": 45, "theta_o": "0:89@30", "phi_o": 180})"},
+      {"/api/albedo", R"({"model": "log-normalized", "params": {"n": 20}, "theta": [0, 45, 80]})"},
+      {"/api/error", R"({"model": "schlick", "n": [2, 20, 200]})"},
+      {"/api/glsl", R"({"model": "ward"})"},
+      {"/api/check", R"({"model": "phong-normalized", "pairs": 200, "step": 5})"},
+      {"/api/normalize", R"({"model": "log", "n": [0]})"},  // an error answer is an answer too
+      {"/api/nope", ""},
+  };
+  return calls;
+}
+
+TEST(ServeConcurrency, ParallelClientsGetTheSequentialAnswers) {
+  TestServer server;
+  const auto& calls = mixed_calls();
+  std::vector<Answer> expected;
+  for (const auto& c : calls) expected.push_back(send(server.port(), c));
+  for (const auto& a : expected) ASSERT_NE(a.status, 0);
+
+  constexpr int kThreads = 8, kRequests = 50;
+  std::vector<std::vector<std::pair<std::size_t, Answer>>> seen(kThreads);
+  std::vector<std::thread> clients;
+  for (int t = 0; t < kThreads; ++t)
+    clients.emplace_back([&, t] {
+      for (int i = 0; i < kRequests; ++i) {
+        const std::size_t which = static_cast<std::size_t>(t * 7 + i * 3) % calls.size();
+        seen[static_cast<std::size_t>(t)].emplace_back(which, send(server.port(), calls[which]));
+      }
+    });
+  for (auto& c : clients) c.join();
+  std::size_t compared = 0;
+  for (const auto& answers : seen)
+    for (const auto& [which, a] : answers) {
+      EXPECT_EQ(a.status, expected[which].status) << calls[which].path;
+      EXPECT_EQ(a.body, expected[which].body) << calls[which].path;
+      ++compared;
+    }
+  EXPECT_EQ(compared, std::size_t{kThreads * kRequests});
+}
+
+/// Polls the job until `done(status)` holds or the job is no longer running; bounded.
+json poll(int port, std::int64_t id, const std::function<bool(const json&)>& done) {
+  json status;
+  for (int i = 0; i < 3000; ++i) {  // at most ~5 minutes under the sanitizers
+    const Answer a = get(port, fmt::format("/api/fit/{}", id));
+    if (a.status != 200) return json{{"http_status", a.status}, {"body", a.body}};
+    status = a.json();
+    if (done(status) || status["state"] != "running") return status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return status;
+}
+
+std::int64_t start(int port, const json& request) {
+  const Answer a = specula::testing::post_json(port, "/api/fit", request);
+  EXPECT_EQ(a.status, 202) << a.body;
+  return a.status == 202 ? a.json()["job"].get<std::int64_t>() : -1;
+}
+
+TEST(ServeFit, AJobGrowsItsFrontAndIsGoneOnceCancelled) {
+  TestServer server;
+  // The paper's Fig. 5 table to 3 decimals, fitted with a budget far beyond this test's patience.
+  const std::int64_t id = start(server.port(), {{"model", "log"}, {"n", "paper50"}, {"round", 3},
+                                                {"generations", 100000}, {"time", 60}});
+  const json status = poll(server.port(), id, [](const json& s) { return s["front"].size() >= 3; });
+  ASSERT_EQ(status["state"], "running") << status.dump(2);
+  ASSERT_GE(status["front"].size(), 3u);
+  EXPECT_EQ(status["variables"], json::array({"n"}));
+  EXPECT_EQ(status["rows"], 50);
+  for (const auto& c : status["front"]) {
+    const auto formula = expr::parse(c["formula"].get<std::string>());
+    const double k1000 = expr::evaluate(formula, std::vector<double>(formula.variables().size(), 1000.0));
+    if (c["size"].get<int>() >= 3) {
+      EXPECT_NEAR(k1000, 197.5, 197.5 * 0.05) << c.dump(2);
+    }
+    EXPECT_THAT(c["cpp"].get<std::string>(), HasSubstr("inline double fitted_coef("));
+    EXPECT_THAT(c["glsl"].get<std::string>(), HasSubstr("float fitted_coef("));
+  }
+  const Answer cancelled = del(server.port(), fmt::format("/api/fit/{}", id));
+  ASSERT_EQ(cancelled.status, 200);
+  EXPECT_EQ(cancelled.json()["state"], "cancelled");
+  EXPECT_EQ(get(server.port(), fmt::format("/api/fit/{}", id)).status, 404);
+  EXPECT_EQ(del(server.port(), fmt::format("/api/fit/{}", id)).status, 404);
+}
+
+TEST(ServeFit, AJobOnColumnsFindsTheExactFormula) {
+  TestServer server;
+  json columns{{"x", json::array()}, {"y", json::array()}};
+  for (int i = 1; i <= 20; ++i) {
+    columns["x"].push_back(i);
+    columns["y"].push_back(2.5 * i + 1);
+  }
+  const std::int64_t id = start(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}}, {"generations", 2}});
+  const json status = poll(server.port(), id, [](const json&) { return false; });
+  ASSERT_EQ(status["state"], "done") << status.dump(2);
+  EXPECT_EQ(status["stopped_by"], "generations");
+  const json& chosen = status["front"][status["chosen"].get<std::size_t>()];
+  EXPECT_LT(chosen["train_error"].get<double>(), 1e-9) << chosen.dump(2);
+  EXPECT_THAT(chosen["cpp"].get<std::string>(), HasSubstr("inline double fitted_y(double x)"));
+}
+
+TEST(ServeFit, RunsAtMostTheLimitOfJobsAtOnce) {
+  Limits limits;
+  limits.max_running_fits = 1;
+  TestServer server(limits);
+  const json endless{{"model", "log"}, {"generations", 100000}, {"time", 60}};
+  const std::int64_t first = start(server.port(), endless);
+  const Answer second = specula::testing::post_json(server.port(), "/api/fit", endless);
+  EXPECT_EQ(second.status, 429) << second.body;
+  EXPECT_THAT(second.body, HasSubstr("\"error\""));
+  EXPECT_EQ(del(server.port(), fmt::format("/api/fit/{}", first)).status, 200);
+}
+
+TEST(ServeFit, StoppingTheServerCancelsItsJobs) {
+  Api api;  // what Server::stop() calls, without the transport
+  const Response started = api.handle({"POST", "/api/fit", R"({"model": "log", "generations": 100000, "time": 60})"});
+  ASSERT_EQ(started.status, 202) << started.body;
+  api.cancel_fits();
+  json status;
+  for (int i = 0; i < 3000; ++i) {  // bounded: a cancelled job stops within one budget check
+    status = json::parse(api.handle({"GET", "/api/fit/1", ""}).body);
+    if (status["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status["state"], "cancelled") << status.dump(2);
+  EXPECT_EQ(status["stopped_by"], "cancelled");
+  EXPECT_FALSE(status["front"].empty());
+}
+
+TEST(ServeFit, DestroyingTheServerWithAJobRunningReturns) {
+  auto server = std::make_unique<TestServer>();
+  const std::int64_t id = start(server->port(), {{"model", "log"}, {"generations", 100000}, {"time", 60}});
+  EXPECT_EQ(get(server->port(), fmt::format("/api/fit/{}", id)).json()["state"], "running");
+  server.reset();  // stops listening, cancels the job and joins its thread (a hang fails by timeout)
+}
+
+TEST(ServeAddresses, LoopbackAndUrls) {
+  for (const char* host : {"127.0.0.1", "127.3.2.1", "localhost", "::1"}) EXPECT_TRUE(is_loopback(host)) << host;
+  for (const char* host : {"0.0.0.0", "192.168.1.2", "::", "example.org", "128.0.0.1"}) EXPECT_FALSE(is_loopback(host)) << host;
+  EXPECT_EQ(url_of("127.0.0.1", 8080), "http://127.0.0.1:8080/");
+  EXPECT_EQ(url_of("::1", 80), "http://[::1]:80/");
+}
+
+}  // namespace
+}  // namespace specula::serve

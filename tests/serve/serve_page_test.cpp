@@ -1,0 +1,170 @@
+// The page in a real browser: Debian's chromium, headless with SwiftShader's WebGL2, driven by
+// chromedriver. It loads from the server's embedded assets, renders each model's sphere with the
+// shader the server emits — pixels within a tolerance of the CPU renderer's image of the same
+// scene — re-renders when a slider moves (by keyboard) or a model is picked, keeps its state in
+// the URL, draws its plots, runs a fit, and fits a phone-width screen.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "serve_support.h"
+#include "specula/brdf/directions.h"
+#include "specula/render/image.h"
+#include "specula/render/render.h"
+#include "specula/render/scene.h"
+#include "webdriver.h"
+
+namespace specula::serve {
+namespace {
+
+using json = nlohmann::json;
+using specula::testing::TestServer;
+using specula::testing::WebDriver;
+using ::testing::HasSubstr;
+
+constexpr int kSize = 96;
+constexpr const char* kArrowLeft = "\ue012";
+
+/// The CPU renderer's 8-bit sRGB image (RGB, top row first) of the page's scene for `model` with
+/// the light at polar angle theta and azimuth phi (degrees) about the camera's axis.
+std::vector<std::uint8_t> cpu_image(const Model& model, double theta, double phi) {
+  render::Scene scene = render::default_scene(model);
+  scene.lights[0].direction = from_spherical(radians(theta), radians(phi));
+  return render::to_srgb8(render::render_cpu(scene, {kSize, kSize}), render::Display{});
+}
+
+std::string percent_encoded(const std::string& text) {
+  std::string out;
+  for (const unsigned char ch : text)
+    out += std::isalnum(ch) || ch == '-' || ch == '_' || ch == '.' ? std::string(1, static_cast<char>(ch)) : fmt::format("%{:02X}", ch);
+  return out;
+}
+
+struct Agreement {
+  double within_2 = 0;  ///< fraction of pixels whose channels all differ by ≤ 2/255
+  int max_difference = 0;
+};
+
+/// Compares the canvas's RGBA bytes with the CPU's RGB bytes.
+Agreement compare(const json& rgba, const std::vector<std::uint8_t>& rgb) {
+  Agreement a;
+  const std::size_t pixels = rgb.size() / 3;
+  if (rgba.size() != 4 * pixels) return a;
+  std::size_t close = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(rgba[4 * p + c].get<int>() - int{rgb[3 * p + c]}));
+    close += worst <= 2 ? 1 : 0;
+    a.max_difference = std::max(a.max_difference, worst);
+  }
+  a.within_2 = static_cast<double>(close) / static_cast<double>(pixels);
+  return a;
+}
+
+class Page : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    browser_ = std::make_unique<WebDriver>(SPECULA_CHROMEDRIVER, SPECULA_CHROMIUM, 1280, 800);
+  }
+
+  std::string base() const { return fmt::format("http://127.0.0.1:{}/", server_.port()); }
+
+  void open(const json& state) {
+    browser_->go(base() + "#state=" + percent_encoded(state.dump()));
+    ASSERT_TRUE(wait_until_rendered(1));
+  }
+
+  /// Waits until the page has finished `count` renders and says "ready".
+  bool wait_until_rendered(int count) {
+    return browser_->wait_for(fmt::format(
+        "return Number(document.body.dataset.renders || 0) >= {} && document.getElementById('status').textContent === 'ready';", count));
+  }
+
+  int renders() { return std::stoi(browser_->run("return document.body.dataset.renders || '0';").get<std::string>()); }
+
+  json state() { return json::parse(browser_->run("return new URLSearchParams(location.hash.slice(1)).get('state');").get<std::string>()); }
+
+  json sphere_pixels(int index) {
+    return browser_->run(
+        "const c = document.getElementById(arguments[0]); const copy = document.createElement('canvas');"
+        "copy.width = c.width; copy.height = c.height; const x = copy.getContext('2d'); x.drawImage(c, 0, 0);"
+        "return Array.from(x.getImageData(0, 0, c.width, c.height).data);",
+        json::array({fmt::format("sphere-{}", index)}));
+  }
+
+  void expect_matches_cpu(int index, const Model& model, double theta, double phi) {
+    const Agreement a = compare(sphere_pixels(index), cpu_image(model, theta, phi));
+    EXPECT_GE(a.within_2, 0.999) << model.id() << ": max difference " << a.max_difference;
+    EXPECT_LE(a.max_difference, 3) << model.id();  // SwiftShader here: at most 1/255
+  }
+
+  TestServer server_;
+  std::unique_ptr<WebDriver> browser_;
+};
+
+const json kState = {{"models", {{{"id", "log-normalized"}, {"params", {{"n", 50}}}}, {{"id", "schlick"}, {"params", {{"n", 20}}}}}},
+                     {"theta", 30}, {"phi", 135}, {"reference", "phong-normalized"}, {"size", kSize}};
+
+TEST_F(Page, RendersEachModelLikeTheCpuRenderer) {
+  open(kState);
+  expect_matches_cpu(0, make_model("log-normalized", {{"n", 50}}), 30, 135);
+  expect_matches_cpu(1, make_model("schlick", {{"n", 20}}), 30, 135);
+  // Not a tautology: a different model is far from this image.
+  EXPECT_LT(compare(sphere_pixels(0), cpu_image(make_model("schlick", {{"n", 20}}), 30, 135)).within_2, 0.99);
+}
+
+TEST_F(Page, ASliderMovedByKeyboardRerendersAndUpdatesTheUrl) {
+  open(kState);
+  const json before = sphere_pixels(0);
+  const int done = renders();
+  std::string keys;
+  for (int i = 0; i < 40; ++i) keys += kArrowLeft;
+  browser_->send_keys("#param-0-n", keys);
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('status').textContent === 'ready';"));
+  const double n = state()["models"][0]["params"]["n"].get<double>();
+  EXPECT_LT(n, 50);
+  const json after = sphere_pixels(0);
+  EXPECT_NE(after, before);
+  expect_matches_cpu(0, make_model("log-normalized", {{"n", n}}), 30, 135);
+}
+
+TEST_F(Page, PickingAModelShowsItsSphereAndPlots) {
+  open(kState);
+  const int done = renders();
+  browser_->run("const s = document.getElementById('model-1'); s.value = 'ggx'; s.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_EQ(state()["models"][1]["id"], "ggx");
+  expect_matches_cpu(1, make_model("ggx"), 30, 135);
+  for (const char* plot : {"plot-lobe", "plot-polar", "plot-albedo"})
+    EXPECT_EQ(browser_->run(fmt::format("return document.querySelectorAll('#{} polyline').length;", plot)), 2) << plot;
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-error polyline').length;"), 1);  // ggx is no lobe
+  EXPECT_EQ(browser_->run("return document.querySelector('#coefficients tbody td:nth-child(3)').textContent;"), "10.108516");
+  EXPECT_THAT(browser_->run("return document.getElementById('difference-caption').textContent;").get<std::string>(),
+              HasSubstr("against phong-normalized"));
+}
+
+TEST_F(Page, TheFitPanelShowsTheFrontWithCopyableCode) {
+  open(kState);
+  browser_->run("document.getElementById('fit-generations').value = '3';");
+  browser_->click("#fit-start");
+  ASSERT_TRUE(browser_->wait_for("return /: (done|failed)/.test(document.getElementById('fit-status').textContent);"));
+  EXPECT_THAT(browser_->run("return document.getElementById('fit-status').textContent;").get<std::string>(), HasSubstr("done"));
+  EXPECT_GE(browser_->run("return document.querySelectorAll('#fit-front tbody tr').length;").get<int>(), 3);
+  EXPECT_THAT(browser_->run("return document.querySelector('#fit-front tr.chosen').textContent;").get<std::string>(),
+              HasSubstr("chosen"));
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#fit-front tbody button').length;"),
+            2 * browser_->run("return document.querySelectorAll('#fit-front tbody tr').length;").get<int>());
+}
+
+TEST_F(Page, FitsAPhoneWidthScreen) {
+  browser_->session("POST", "/window/rect", {{"width", 390}, {"height", 844}});
+  open(kState);
+  const int viewport = browser_->run("return document.documentElement.clientWidth;").get<int>();
+  EXPECT_LE(browser_->run("return document.documentElement.scrollWidth;").get<int>(), viewport);
+}
+
+}  // namespace
+}  // namespace specula::serve

@@ -1,0 +1,14 @@
+// The server's JSON API: GET without a body, POST with one; an error answer throws
+// an Error whose message names the field ("n: …").
+export async function api(path, body) {
+  const init = body === undefined ? {} : {method: 'POST', headers: {'Content-Type': 'application/json'}, body: JSON.stringify(body)};
+  const response = await fetch(path, init);
+  const answer = await response.json();
+  if (!response.ok) throw new Error(answer.field ? `${answer.field}: ${answer.error}` : answer.error);
+  return answer;
+}
+
+export const del = async (path) => (await fetch(path, {method: 'DELETE'})).json();
+
+/// The rows of a table answer as arrays per column: column(table, 'value').
+export const column = (table, name) => table.rows.map((row) => row[name]);

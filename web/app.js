@@ -1,0 +1,178 @@
+// specula lab: model cards with parameter sliders, the spheres (WebGL2, the server's shaders),
+// a difference view, plots and the fit panel. Every number comes from the server's API.
+import {api, column} from './api.js';
+import {readState, writeState} from './state.js';
+import {SphereView, drawDifference} from './spheres.js';
+import {linePlot, polarPlot, palette} from './plots.js';
+import {setupFit} from './fit.js';
+
+const $ = (id) => document.getElementById(id);
+let catalogue = [], state = readState(), pending = null, generation = 0;
+const views = [];
+
+const info = (id) => catalogue.find((m) => m.id === id);
+const isLobe = (id) => info(id)?.kind === 'lobe';
+const wide = (p) => p.max / Math.max(p.min, 1e-3) > 1000;  // log slider for n-like parameters
+
+// Slider position in [0, 1000] ↔ parameter value.
+function toSlider(p, v) {
+  if (wide(p)) return 1000 * Math.log10(Math.max(v, 1)) / 4;  // n in [1, 10⁴]
+  return 1000 * (v - p.min) / (p.max - p.min);
+}
+function fromSlider(p, s) {
+  if (wide(p)) return Number((10 ** (4 * s / 1000)).toPrecision(3));
+  return Number((p.min + (p.max - p.min) * s / 1000).toPrecision(3)) || (p.min_exclusive ? p.max / 1000 : p.min);
+}
+
+function modelCard(model, index) {
+  const card = document.createElement('div');
+  card.className = 'model';
+  const header = document.createElement('header');
+  const select = document.createElement('select');
+  select.id = `model-${index}`;
+  select.setAttribute('aria-label', `Model ${index + 1}`);
+  select.replaceChildren(...catalogue.map((m) => new Option(m.id, m.id, false, m.id === model.id)));
+  select.addEventListener('change', () => {
+    state.models[index] = {id: select.value, params: {}};
+    rebuild();
+  });
+  header.append(Object.assign(document.createElement('span'), {textContent: '●', style: `color:${palette[index]}`}), select);
+  if (state.models.length > 1) {
+    const remove = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Remove'});
+    remove.setAttribute('aria-label', `Remove model ${index + 1}`);
+    remove.addEventListener('click', () => { state.models.splice(index, 1); rebuild(); });
+    header.append(remove);
+  }
+  card.append(header);
+  for (const p of info(model.id).params) {
+    const value = model.params[p.name] ?? p.default;
+    const id = `param-${index}-${p.name}`;
+    const label = Object.assign(document.createElement('label'), {htmlFor: id});
+    const output = Object.assign(document.createElement('output'), {textContent: value});
+    label.append(`${p.name} = `, output);
+    const slider = Object.assign(document.createElement('input'), {type: 'range', id, min: 0, max: 1000, step: 1});
+    slider.value = toSlider(p, value);
+    slider.addEventListener('input', () => {
+      model.params[p.name] = fromSlider(p, Number(slider.value));
+      output.textContent = model.params[p.name];
+      schedule();
+    });
+    card.append(label, slider);
+  }
+  return card;
+}
+
+function rebuild() {
+  $('models').replaceChildren(...state.models.map(modelCard));
+  $('add-model').disabled = state.models.length >= 4;
+  views.length = 0;
+  $('spheres').replaceChildren(...state.models.map((m, i) => {
+    const figure = document.createElement('figure');
+    const canvas = Object.assign(document.createElement('canvas'), {id: `sphere-${i}`, width: state.size, height: state.size});
+    canvas.setAttribute('aria-label', `Sphere shaded with ${m.id}`);
+    views.push(new SphereView(canvas));
+    figure.append(canvas, Object.assign(document.createElement('figcaption'), {textContent: m.id}));
+    return figure;
+  }));
+  views.reference = new SphereView(Object.assign(document.createElement('canvas'), {width: state.size, height: state.size}));
+  schedule();
+}
+
+function schedule() {
+  clearTimeout(pending);
+  pending = setTimeout(update, 60);
+}
+
+const lightDirection = () => {
+  const t = (state.theta * Math.PI) / 180, p = (state.phi * Math.PI) / 180;
+  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+};
+const shaderRequest = (m) => ({model: m.id, params: m.params, shader: true, light: lightDirection(), size: [state.size, state.size]});
+const lobeParams = (m) => Object.fromEntries(Object.entries(m.params).filter(([k]) => k !== 'n'));
+
+async function drawSpheres(ticket) {
+  const answers = await Promise.all([...state.models, {id: state.reference, params: {}}].map((m) => api('/api/glsl', shaderRequest(m))));
+  if (ticket !== generation) return;
+  state.models.forEach((m, i) => views[i].draw(answers[i]));
+  views.reference.draw(answers[answers.length - 1]);
+  const max = drawDifference($('difference'), views[0].pixels(), views.reference.pixels(), state.size, state.size);
+  $('difference-caption').textContent = `|ΔL| of ${state.models[0].id} against ${state.reference}: max ${max.toPrecision(3)}`;
+}
+
+async function drawPlots(ticket) {
+  const degrees = Array.from({length: 90}, (_, i) => i);
+  const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id}));
+  const lobe = await Promise.all(models.map(async (m) => isLobe(m.id)
+    ? {...m, xs: degrees, ys: column(await api('/api/eval', {model: m.id, params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
+    : {...m, xs: degrees, ys: column(await api('/api/eval', {model: m.id, params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
+  const polar = await Promise.all(models.map(async (m) => {
+    const at = (phi) => api('/api/eval', {model: m.id, params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
+    const [away, toward] = await Promise.all([at(180), at(0)]);
+    return {...m, degrees: [...degrees.map((d) => d).reverse(), ...degrees.map((d) => -d)],
+            values: [...column(away, 'value').reverse(), ...column(toward, 'value')]};
+  }));
+  const thetas = '0:85:5,89';
+  const albedo = await Promise.all(models.map(async (m) => {
+    const t = await api('/api/albedo', {model: m.id, params: m.params, theta: thetas});
+    return {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
+  }));
+  const error = isLobe(state.reference) ? await Promise.all(models.filter((m) => isLobe(m.id)).map(async (m) => {
+    const t = await api('/api/error', {model: m.id, params: lobeParams(m), reference: state.reference, n: '1:1000@25:log'});
+    return {...m, xs: column(t, 'n'), ys: column(t, 'max_abs')};
+  })) : [];
+  const coefficients = await Promise.all(models.filter((m) => isLobe(m.id)).map(async (m) => {
+    const used = await api('/api/eval', {model: m.id, params: m.params, cos: [1]});
+    const logLobe = m.id.startsWith('log');  // the paper fitted k(n) for the log lobe only
+    const exact = await api('/api/normalize', {model: m.id, params: lobeParams(m), n: [m.params.n ?? info(m.id).params[0].default],
+                                               ...(logLobe ? {compare: 'log-paper'} : {})});
+    return [m.id, Number(used.coef), column(exact, 'coef')[0], logLobe ? column(exact, 'coef_compare')[0] : '-'];
+  }));
+  if (ticket !== generation) return;
+  linePlot($('plot-lobe'), lobe, {xLabel: 'angle (degrees)', yLabel: 'k·F or f'});
+  polarPlot($('plot-polar'), polar, {lightDeg: state.theta});
+  linePlot($('plot-albedo'), albedo, {xLabel: 'θi (degrees)', yLabel: 'albedo ρ'});
+  linePlot($('plot-error'), error, {xLabel: 'n', yLabel: 'max |F − Fref|', logX: true});
+  document.querySelector('#coefficients tbody').replaceChildren(...coefficients.map((cells) => {
+    const row = document.createElement('tr');
+    for (const c of cells) row.append(Object.assign(document.createElement('td'), {textContent: typeof c === 'number' ? c.toPrecision(8) : c}));
+    return row;
+  }));
+}
+
+async function update() {
+  const ticket = ++generation;
+  $('light-theta-value').textContent = state.theta;
+  $('light-phi-value').textContent = state.phi;
+  writeState(state);
+  $('status').textContent = 'computing…';
+  $('status').className = '';
+  try {
+    await Promise.all([drawSpheres(ticket), drawPlots(ticket)]);
+    if (ticket !== generation) return;
+    $('status').textContent = 'ready';
+    document.body.dataset.renders = String(Number(document.body.dataset.renders || 0) + 1);
+  } catch (e) {
+    $('status').textContent = e.message;
+    $('status').className = 'error';
+  }
+}
+
+async function main() {
+  catalogue = await api('/api/models');
+  state.models = state.models.filter((m) => info(m.id)).slice(0, 4);
+  if (!state.models.length) state.models = [{id: 'log-normalized', params: {n: 50}}];
+  $('reference').replaceChildren(...catalogue.map((m) => new Option(m.id, m.id, false, m.id === state.reference)));
+  $('reference').addEventListener('change', () => { state.reference = $('reference').value; schedule(); });
+  for (const [id, key] of [['light-theta', 'theta'], ['light-phi', 'phi']]) {
+    $(id).value = state[key];
+    $(id).addEventListener('input', () => { state[key] = Number($(id).value); schedule(); });
+  }
+  $('add-model').addEventListener('click', () => {
+    if (state.models.length < 4) state.models.push({id: 'phong-normalized', params: {n: 50}});
+    rebuild();
+  });
+  setupFit(catalogue.filter((m) => m.kind === 'lobe'));
+  rebuild();
+}
+
+main().catch((e) => { $('status').textContent = e.message; $('status').className = 'error'; });

@@ -1,0 +1,75 @@
+// Small SVG plots: lines against x (linear or log axes) and polar curves, with a legend.
+const NS = 'http://www.w3.org/2000/svg';
+export const palette = ['#d62728', '#1f77b4', '#2ca02c', '#9467bd', '#7f7f7f'];
+
+function element(name, attributes, text) {
+  const e = document.createElementNS(NS, name);
+  for (const [k, v] of Object.entries(attributes)) e.setAttribute(k, v);
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+const finite = (v) => typeof v === 'number' && Number.isFinite(v);
+
+function extent(values, log) {
+  const usable = values.filter((v) => finite(v) && (!log || v > 0));
+  if (!usable.length) return [0, 1];
+  let lo = Math.min(...usable), hi = Math.max(...usable);
+  if (!log) lo = Math.min(lo, 0);
+  if (hi === lo) hi = lo + (log ? lo : 1);
+  return [lo, hi];
+}
+
+function legend(svg, series, x, y) {
+  series.forEach((s, i) => {
+    svg.append(element('rect', {x, y: y + 14 * i, width: 10, height: 3, fill: s.colour}));
+    svg.append(element('text', {x: x + 14, y: y + 14 * i + 5, 'font-size': 11}, s.name));
+  });
+}
+
+/// series: [{name, colour, xs, ys}]; options: {xLabel, yLabel, logX, logY}.
+export function linePlot(container, series, options = {}) {
+  const W = 360, H = 230, L = 48, R = 10, T = 10, B = 34;
+  const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': options.title || options.yLabel || 'plot'});
+  const [x0, x1] = extent(series.flatMap((s) => s.xs), options.logX);
+  const [y0, y1] = extent(series.flatMap((s) => s.ys), options.logY);
+  const f = (v, lo, hi, log) => (log ? (Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo)) : (v - lo) / (hi - lo));
+  const px = (v) => L + f(v, x0, x1, options.logX) * (W - L - R);
+  const py = (v) => H - B - f(v, y0, y1, options.logY) * (H - T - B);
+  svg.append(element('rect', {x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999'}));
+  for (const [v, anchor] of [[x0, 'start'], [x1, 'end']])
+    svg.append(element('text', {x: px(v), y: H - B + 13, 'font-size': 10, 'text-anchor': anchor}, +v.toPrecision(3)));
+  for (const v of [y0, y1]) svg.append(element('text', {x: L - 3, y: py(v) + 4, 'font-size': 10, 'text-anchor': 'end'}, +v.toPrecision(3)));
+  svg.append(element('text', {x: (L + W - R) / 2, y: H - 4, 'font-size': 11, 'text-anchor': 'middle'}, options.xLabel || ''));
+  svg.append(element('text', {x: 12, y: (T + H - B) / 2, 'font-size': 11, 'text-anchor': 'middle', transform: `rotate(-90 12 ${(T + H - B) / 2})`}, options.yLabel || ''));
+  for (const s of series) {
+    const points = s.xs.map((x, i) => [x, s.ys[i]]).filter(([x, y]) => finite(x) && finite(y) && (!options.logX || x > 0) && (!options.logY || y > 0));
+    if (points.length)
+      svg.append(element('polyline', {points: points.map(([x, y]) => `${px(x).toFixed(1)},${py(y).toFixed(1)}`).join(' '), fill: 'none', stroke: s.colour, 'stroke-width': 1.6}));
+  }
+  legend(svg, series, W - R - 150, T + 8);
+  container.replaceChildren(svg);
+}
+
+/// series: [{name, colour, degrees (from the normal, negative toward the light's side), values}].
+export function polarPlot(container, series, options = {}) {
+  const W = 360, H = 230, cx = W / 2, cy = H - 20, radius = H - 40;
+  const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': options.title || 'polar plot'});
+  const max = Math.max(1e-12, ...series.flatMap((s) => s.values.filter(finite)));
+  svg.append(element('path', {d: `M ${cx - radius} ${cy} A ${radius} ${radius} 0 0 1 ${cx + radius} ${cy} Z`, fill: 'none', stroke: '#bbb'}));
+  svg.append(element('line', {x1: cx, y1: cy, x2: cx, y2: cy - radius, stroke: '#ddd'}));
+  if (options.lightDeg !== undefined) {
+    const a = (options.lightDeg * Math.PI) / 180;
+    svg.append(element('line', {x1: cx, y1: cy, x2: cx - radius * Math.sin(a), y2: cy - radius * Math.cos(a), stroke: '#e6a700', 'stroke-dasharray': '4 3'}));
+  }
+  for (const s of series) {
+    const points = s.degrees.map((d, i) => {
+      const r = (finite(s.values[i]) ? s.values[i] : 0) / max * radius, a = (d * Math.PI) / 180;
+      return `${(cx + r * Math.sin(a)).toFixed(1)},${(cy - r * Math.cos(a)).toFixed(1)}`;
+    });
+    svg.append(element('polyline', {points: points.join(' '), fill: 'none', stroke: s.colour, 'stroke-width': 1.6}));
+  }
+  svg.append(element('text', {x: 4, y: 12, 'font-size': 10}, `max ${+max.toPrecision(3)}`));
+  legend(svg, series, W - 150, 10);
+  container.replaceChildren(svg);
+}

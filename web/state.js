@@ -1,0 +1,19 @@
+// The page's state lives in the URL (after #), so a view can be shared by its address.
+export const defaultState = () => ({
+  models: [{id: 'log-normalized', params: {n: 50}}, {id: 'log', params: {n: 50}}, {id: 'schlick', params: {n: 50}}],
+  theta: 55, phi: 135, reference: 'phong-normalized', size: 256,
+});
+
+export function readState() {
+  const hash = new URLSearchParams(location.hash.slice(1)).get('state');
+  if (!hash) return defaultState();
+  try {
+    return {...defaultState(), ...JSON.parse(hash)};
+  } catch {
+    return defaultState();
+  }
+}
+
+export function writeState(state) {
+  history.replaceState(null, '', '#' + new URLSearchParams({state: JSON.stringify(state)}).toString());
+}
