@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <numbers>
+#include <string_view>
 #include <utility>
 
 #include "specula/error.h"
@@ -16,6 +17,12 @@ constexpr double kLeft = 74, kRight = 18, kTop = 36, kBottom = 54;
 constexpr const char* kFont = "font-family=\"Helvetica, Arial, sans-serif\"";
 constexpr const char* kGrid = "#e3e3e3";
 constexpr const char* kInk = "#222";
+constexpr double kLabelCharWidth = 5.6;  // a 10 px sans-serif character, on average
+
+/// Characters (code points) of UTF-8 text, for estimating its drawn width.
+std::size_t glyphs(std::string_view text) {
+  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char ch) { return (ch & 0xC0) != 0x80; }));
+}
 
 bool usable(double v, Scale scale) { return std::isfinite(v) && (scale == Scale::linear || v > 0); }
 
@@ -168,13 +175,21 @@ std::string series_svg(const Chart& chart, const Series& s, const AxisMap& xs, c
     points += fmt::format(" {:.2f},{:.2f}", xs(s.x[i]), ys(s.y[i]));
   }
   flush();
+  std::pair<double, double> last_label{0, 0};  // the horizontal extent of the last label drawn above
+  double last_label_y = 0;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
     if (!usable(s.x[i], chart.x.scale) || !usable(s.y[i], chart.y.scale)) continue;
     if (s.markers)
       out += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"3.2\" fill=\"{}\"/>\n", xs(s.x[i]), ys(s.y[i]), s.colour);
-    if (!s.point_labels.empty())
-      out += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"10\" fill=\"{}\">{}</text>\n", xs(s.x[i]) + 5,
-                         ys(s.y[i]) - 5, kInk, xml_escape(s.point_labels[i]));
+    if (s.point_labels.empty()) continue;
+    // A label that would run into the previous one (drawn above its point) goes below its own.
+    const double x = xs(s.x[i]) + 5, y = ys(s.y[i]);
+    const double end = x + kLabelCharWidth * static_cast<double>(glyphs(s.point_labels[i]));
+    const bool below = x < last_label.second && last_label.first < end && std::abs(y - last_label_y) < 12;
+    out += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"10\" fill=\"{}\">{}</text>\n", x,
+                       below ? y + 14 : y - 5, kInk, xml_escape(s.point_labels[i]));
+    last_label = below ? std::pair{0.0, 0.0} : std::pair{x, end};
+    last_label_y = y;
   }
   return out;
 }
@@ -185,7 +200,7 @@ std::string legend_svg(const Chart& chart, double x0, double x1, double y0, doub
     if (!s.name.empty()) entries.push_back(&s);
   if (entries.empty() || chart.legend == Legend::none) return "";
   std::size_t longest = 0;
-  for (const auto* s : entries) longest = std::max(longest, s->name.size());
+  for (const auto* s : entries) longest = std::max(longest, glyphs(s->name));
   const double w = 40 + 6.2 * static_cast<double>(longest), h = 8 + 16 * static_cast<double>(entries.size());
   const bool right = chart.legend == Legend::top_right || chart.legend == Legend::bottom_right;
   const bool top = chart.legend == Legend::top_right || chart.legend == Legend::top_left;

@@ -805,7 +805,7 @@ TEST_F(CliFit, OutWritesTheFileAndNothingElse) {
   EXPECT_THAT(listing(work()), ElementsAre("front.json", "pole.csv"));
 }
 
-// ---- bad input ------------------------------------------------------------------------------
+// ---- bench ----------------------------------------------------------------------------------
 
 TEST_F(Cli, BenchQuickJsonHoldsEveryLobeAndTier) {
   // The figures themselves are timings of this machine: only their presence and sign are
@@ -838,6 +838,8 @@ TEST_F(Cli, BenchTableHasRatiosBaselinesAndLimits) {
   bad({"bench", "--format", "xml"});
   bad({"bench", "--n", "0"});
 }
+
+// ---- bad input ------------------------------------------------------------------------------
 
 TEST_F(Cli, UnknownModel) {
   EXPECT_THAT(bad({"normalize", "--model", "nope", "--n", "1"}).err, HasSubstr("nope"));
