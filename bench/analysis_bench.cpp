@@ -18,8 +18,10 @@
 //       the second target (< 1 s for the three): analysis::approximation_error of the bare
 //       log, schlick and schlick-modified (s = 1.25) lobes against phong (zone ½), parallel_map
 //       over n = 1, 2, …, 1000 — what `specula error --n 1:1000` computes, without the table.
-//   analysis/albedo_monte_carlo/<model>/<param>/theta:45/samples:100000
+//   analysis/albedo_monte_carlo/<model>/<param>/theta:45/samples:100000[/scalar_target]
 //       analysis::albedo_monte_carlo, single-threaded; items_per_second = samples per second.
+//       scalar_target: the same on Highway's scalar target (its BRDF batches one lane at a
+//       time), so that the SIMD gain is the ratio of the two rates in one run.
 //   analysis/max_albedo/log-normalized/n:20/step:1
 //       analysis::max_albedo (the check's search): albedo_curve over 0:89 + 89.5 + 89.9°, then
 //       golden-section refinement to 1e-4°.
@@ -27,6 +29,7 @@
 
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,6 +38,7 @@
 #include "specula/analysis/check.h"
 #include "specula/analysis/error.h"
 #include "specula/analysis/monte_carlo.h"
+#include "specula/simd/targets.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/lobes/lobes.h"
@@ -133,7 +137,9 @@ void bm_error_sweep(benchmark::State& state, std::vector<LobeOf> models) {
 
 constexpr std::size_t kSamples = 100'000;
 
-void bm_monte_carlo(benchmark::State& state, Model model) {
+void bm_monte_carlo(benchmark::State& state, Model model, bool scalar_target) {
+  std::optional<simd::ScopedTarget> scalar;
+  if (scalar_target) scalar.emplace(simd::runnable_targets().back());
   const double theta = radians(45.0);
   std::uint64_t seed = 1;
   for (auto _ : state) {
@@ -200,14 +206,15 @@ struct Case {
                                std::vector<LobeOf>{log_lobe, schlick_lobe, schlick_modified_lobe})
       ->Unit(benchmark::kMillisecond)->UseRealTime();
 
-  benchmark::RegisterBenchmark(
-      "analysis/albedo_monte_carlo/ggx/alpha:0.3/theta:45/samples:100000", bm_monte_carlo,
-      make_model("ggx", {{"alpha", 0.3}}))
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(
-      "analysis/albedo_monte_carlo/log-normalized/n:20/theta:45/samples:100000", bm_monte_carlo,
-      log_normalized(20))
-      ->Unit(benchmark::kMillisecond);
+  for (const bool scalar_target : {false, true}) {
+    const std::string suffix = scalar_target ? "/scalar_target" : "";
+    benchmark::RegisterBenchmark(("analysis/albedo_monte_carlo/ggx/alpha:0.3/theta:45/samples:100000" + suffix).c_str(),
+                                 bm_monte_carlo, make_model("ggx", {{"alpha", 0.3}}), scalar_target)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("analysis/albedo_monte_carlo/log-normalized/n:20/theta:45/samples:100000" + suffix).c_str(),
+                                 bm_monte_carlo, log_normalized(20), scalar_target)
+        ->Unit(benchmark::kMillisecond);
+  }
 
   benchmark::RegisterBenchmark("analysis/max_albedo/log-normalized/n:20/step:1", bm_max_albedo,
                                log_normalized(20), 1.0)

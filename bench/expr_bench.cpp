@@ -2,6 +2,9 @@
 // of rows per node) against a plain recursive interpreter over a pointer tree, row by row.
 //
 //   BM_ExprBatch/<expression>/rows:R       expr::evaluate_batch over R rows
+//   BM_ExprBatchScalarTarget/<expression>/rows:R
+//                                          the same on Highway's scalar target (one lane): the
+//                                          SIMD gain is BM_ExprBatch's rate over this one's
 //   BM_ExprRecursive/<expression>/rows:R   the tree below, evaluated once per row
 //
 // Expressions: kernel (a fitted 11-node lobe kernel in n), nguyen (x³ + x² + x, 11 nodes) and
@@ -20,6 +23,7 @@
 #include <vector>
 
 #include "specula/expr/expr.h"
+#include "specula/simd/targets.h"
 
 namespace {
 
@@ -167,6 +171,11 @@ void bm_batch(benchmark::State& state, const Case& c) {
   });
 }
 
+void bm_batch_scalar_target(benchmark::State& state, const Case& c) {
+  const simd::ScopedTarget scalar(simd::runnable_targets().back());
+  bm_batch(state, c);
+}
+
 void bm_recursive(benchmark::State& state, const Case& c) {
   bm_evaluator(state, c, [](const Inputs& in, const TreeNode& tree, std::span<double> out) {
     evaluate_recursive(tree, in.columns, out);
@@ -185,6 +194,7 @@ void register_rows(const std::string& name, CaseBenchmark function, const Case& 
   for (const Case& c : kCases) {
     for (const int rows : {50, 1000, 100000}) {
       register_rows("BM_ExprBatch", bm_batch, c, rows);
+      register_rows("BM_ExprBatchScalarTarget", bm_batch_scalar_target, c, rows);
       register_rows("BM_ExprRecursive", bm_recursive, c, rows);
     }
   }
