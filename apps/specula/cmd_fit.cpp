@@ -10,6 +10,7 @@
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/io/csv.h"
+#include "specula/io/values.h"
 
 namespace specula::cli {
 namespace {
@@ -24,17 +25,6 @@ struct FitOptions {
   bool quiet = false;
 };
 
-std::vector<std::string> split_names(std::string_view text) {
-  std::vector<std::string> names;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const auto end = std::min(text.find(',', start), text.size());
-    names.emplace_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return names;
-}
-
 // The variables and the target, every value finite (a bad one is named by file line).
 fit::Data load(const FitOptions& o) {
   const io::CsvData csv = io::read_csv(o.data);
@@ -45,7 +35,7 @@ fit::Data load(const FitOptions& o) {
     for (std::size_t c = 0; c < csv.columns.size(); ++c)
       if (c != target) used.push_back(c);
   } else {
-    for (const auto& name : split_names(o.vars)) used.push_back(io::column_index(csv, name));
+    for (const auto name : io::split(o.vars, ',')) used.push_back(io::column_index(csv, name));
   }
   if (used.empty()) throw InvalidArgument(fmt::format("{}: no variable columns besides the target", o.data));
   for (std::size_t c : used) {

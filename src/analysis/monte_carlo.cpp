@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "specula/analysis/albedo.h"
@@ -43,34 +44,42 @@ PowerLobe matched_power_lobe(const Model& model) {
 
 /// Samples above the horizon waiting for their BRDF values, evaluated as one SIMD batch
 /// (simd/brdf.h, exact tier) per block; the sums run in sample order, as one at a time would.
+/// N = +z and L are the same for every sample: their columns are filled once.
 class SampleBlock {
  public:
   static constexpr std::size_t kSize = 1024;
 
-  SampleBlock(const Model& model, const Vec3& l) : model_(model), l_(l) {
-    for (auto& c : dirs_) c.reserve(kSize);
+  SampleBlock(const Model& model, const Vec3& l) : model_(model) {
+    const double fixed[6] = {0, 0, 1, l.x, l.y, l.z};
+    for (std::size_t k = 0; k < 6; ++k) fixed_[k].assign(kSize, fixed[k]);
+    for (auto& c : v_) c.reserve(kSize);
     pdf_.reserve(kSize);
   }
 
   /// A sample V with its pdf; samples that count 0 (below the horizon, pdf 0) come with pdf 0.
   void add(const Vec3& v, double pdf) {
-    const double values[9] = {0, 0, 1, l_.x, l_.y, l_.z, v.x, v.y, v.z};
-    for (std::size_t k = 0; k < 9; ++k) dirs_[k].push_back(values[k]);
+    v_[0].push_back(v.x);
+    v_[1].push_back(v.y);
+    v_[2].push_back(v.z);
     pdf_.push_back(pdf);
     if (pdf_.size() == kSize) flush();
   }
 
   /// Evaluates the pending samples and adds value and value² to the sums.
   void flush() {
-    f_.resize(pdf_.size());
+    const std::size_t count = pdf_.size();
+    const auto first = [count](const std::vector<double>& column) { return std::span<const double>(column.data(), count); };
+    f_.resize(count);
     simd::eval_batch(model_, simd::Tier::exact,
-                     {dirs_[0], dirs_[1], dirs_[2], dirs_[3], dirs_[4], dirs_[5], dirs_[6], dirs_[7], dirs_[8]}, f_);
-    for (std::size_t i = 0; i < pdf_.size(); ++i) {
-      const double value = pdf_[i] > 0 ? f_[i] * dirs_[8][i] / pdf_[i] : 0;  // f (N·V) / pdf
+                     {first(fixed_[0]), first(fixed_[1]), first(fixed_[2]), first(fixed_[3]), first(fixed_[4]),
+                      first(fixed_[5]), v_[0], v_[1], v_[2]},
+                     f_);
+    for (std::size_t i = 0; i < count; ++i) {
+      const double value = pdf_[i] > 0 ? f_[i] * v_[2][i] / pdf_[i] : 0;  // f (N·V) / pdf
       sum += value;
       sum_sq += value * value;
     }
-    for (auto& c : dirs_) c.clear();
+    for (auto& c : v_) c.clear();
     pdf_.clear();
   }
 
@@ -78,8 +87,8 @@ class SampleBlock {
 
  private:
   const Model& model_;
-  Vec3 l_;
-  std::array<std::vector<double>, 9> dirs_;
+  std::array<std::vector<double>, 6> fixed_;  ///< N and L by component
+  std::array<std::vector<double>, 3> v_;
   std::vector<double> pdf_, f_;
 };
 

@@ -26,6 +26,9 @@ using simd::Family;
 constexpr Family kFamilies[] = {Family::power, Family::schlick, Family::schlick_modified, Family::gauss, Family::log};
 constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
 
+/// best = the smaller of best and value; NaN (nothing measured yet) gives value.
+void keep_fastest(double& best, double value) { best = std::isnan(best) ? value : std::min(best, value); }
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -129,7 +132,8 @@ double cache_threads_trial(tbb::task_arena& arena, const Evaluator<T>& eval, std
       }
     });
   });
-  return seconds_since(start) * 1e9 * threads / (double(passes) * double(c.size()) * threads);
+  // wall time × threads ÷ (passes × size × threads) values
+  return seconds_since(start) * 1e9 / (double(passes) * double(c.size()));
 }
 
 /// ns per value per core of one pass over the large arrays, on one core or split over all.
@@ -163,14 +167,14 @@ void time_in_cache(std::vector<Measurement>& rows, const Settings& s, tbb::task_
   for (int trial = 0; trial < s.trials; ++trial)
     for (auto& m : rows) {
       const double ns = cache_trial(evaluator<T>(m, s.n), std::span<const T>(c), std::span<T>(out), s.trial_seconds);
-      m.cache_ns = std::isnan(m.cache_ns) ? ns : std::min(m.cache_ns, ns);
+      keep_fastest(m.cache_ns, ns);
     }
   if (!s.threaded) return;
   for (int trial = 0; trial < s.trials; ++trial)
     for (auto& m : rows) {
       const auto passes = std::size_t(std::max(1.0, s.trial_seconds * 1e9 / (m.cache_ns * double(c.size()))));
       const double ns = cache_threads_trial(arena, evaluator<T>(m, s.n), std::span<const T>(c), passes);
-      m.cache_threads_ns = std::isnan(m.cache_threads_ns) ? ns : std::min(m.cache_threads_ns, ns);
+      keep_fastest(m.cache_threads_ns, ns);
     }
 }
 
@@ -182,10 +186,10 @@ void time_streaming(std::vector<Measurement>& rows, const Settings& s, tbb::task
   for (int pass = 0; pass < passes; ++pass)
     for (auto& m : rows) {
       const double one = stream_pass<T>(nullptr, evaluator<T>(m, s.n), c, out);
-      m.stream_ns = std::isnan(m.stream_ns) ? one : std::min(m.stream_ns, one);
+      keep_fastest(m.stream_ns, one);
       if (!s.threaded) continue;
       const double all = stream_pass<T>(&arena, evaluator<T>(m, s.n), c, out);
-      m.stream_threads_ns = std::isnan(m.stream_threads_ns) ? all : std::min(m.stream_threads_ns, all);
+      keep_fastest(m.stream_threads_ns, all);
     }
 }
 

@@ -10,18 +10,6 @@
 namespace specula::io {
 namespace {
 
-std::vector<std::string_view> split(std::string_view text, char separator) {
-  std::vector<std::string_view> parts;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= text.size(); ++i) {
-    if (i == text.size() || text[i] == separator) {
-      parts.push_back(text.substr(start, i - start));
-      start = i + 1;
-    }
-  }
-  return parts;
-}
-
 [[noreturn]] void malformed(std::string_view item, std::string_view why) {
   throw InvalidArgument(fmt::format("malformed range '{}': {}", item, why));
 }
@@ -117,6 +105,18 @@ std::vector<double> paper50() {
   for (int i = 1; i < 50; ++i)
     n.push_back(std::max(n.back() + 1, std::round(std::pow(1000.0, i / 49.0))));
   return n;
+}
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i) {
+    if (i == text.size() || text[i] == separator) {
+      parts.push_back(text.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  return parts;
 }
 
 }  // namespace specula::io

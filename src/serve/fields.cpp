@@ -108,13 +108,7 @@ std::vector<std::string> Fields::names(std::string_view key) const {
   const Json& value = raw(key);
   std::vector<std::string> list;
   if (value.is_string()) {
-    const std::string text = value.get<std::string>();
-    std::size_t start = 0;
-    while (start <= text.size()) {
-      const auto end = std::min(text.find(',', start), text.size());
-      list.push_back(text.substr(start, end - start));
-      start = end + 1;
-    }
+    for (const auto name : io::split(value.get_ref<const std::string&>(), ',')) list.emplace_back(name);
     return list;
   }
   if (!value.is_array()) fail(key, fmt::format("{} must be an array of strings, got {}", name(key), type_name(value)));

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -44,11 +43,14 @@ using Job = FitJobs::Job;
   throw InvalidField(std::string(field), message);
 }
 
+/// The rules fit::search applies (an expression's variable: an identifier, not a function name)
+/// and those of emitting C++ and GLSL, checked before the job starts so that a bad name is a 400.
 void require_identifier(std::string_view field, const std::string& name) {
-  const bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-                  std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-  if (!ok || expr::function_named(name))
-    fail(field, fmt::format("'{}' cannot name a variable: use letters, digits and _, not a function name", name));
+  try {
+    expr::Expression({{expr::Op::variable, 0, 0}}, {name});
+  } catch (const InvalidArgument& e) {
+    fail(field, fmt::format("{}: use letters, digits and _, not a function name", e.what()));
+  }
   for (const char* language : {"cpp", "glsl"}) {
     try {
       fit::check_emittable({name}, language);

@@ -250,24 +250,27 @@ HWY_INLINE void Log1pDD(D d, V<D> x, V<D>& hi, V<D>& lo) {
   lo = hn::Add(hn::Add(hn::Sub(twoz, hi), c3), hn::Add(c3l, rest));  // |2z| ≥ |c3|
 }
 
-/// ln(1 + x) for x ∈ [√½ − 1, √2 − 1] to ~1e-13 relative: 2z + z³(2/3 + w·P₃(w)), z = x/(2 + x).
-/// Double lanes; the float exact tier, whose result is rounded to float once.
-template <class D>
-HWY_INLINE V<D> Log1pShort(D d, V<D> x) {
+/// 2z + z³(2/3 + w·Q(w)), z = x/(2 + x), w = z²: ln(1 + x) = 2 atanh(z), with `tail` giving Q(w).
+template <class D, class Tail>
+HWY_INLINE V<D> Log1pAtanh(D d, V<D> x, const Tail& tail) {
   const V<D> z = hn::Div(x, hn::Add(hn::Set(d, 2.0), x));
   const V<D> w = hn::Mul(z, z);
-  const V<D> q = hn::MulAdd(w, Horner(d, w, poly::kAtanhTailDeg3), hn::Set(d, 2.0 / 3.0));
+  const V<D> q = hn::MulAdd(w, tail(w), hn::Set(d, 2.0 / 3.0));
   return hn::MulAdd(hn::Mul(z, w), q, hn::Add(z, z));
 }
 
-/// ln(1 + x) to ~1.5 ulp relative for x ∈ [√½ − 1, √2 − 1]: Log1pShort with the full tail
-/// polynomial (6.8e-16 on a term ≤ 2e-4 of the sum).
+/// ln(1 + x) for x ∈ [√½ − 1, √2 − 1] to ~1e-13 relative: Q = P₃ by Horner's rule.
+/// Double lanes; the float exact tier, whose result is rounded to float once.
+template <class D>
+HWY_INLINE V<D> Log1pShort(D d, V<D> x) {
+  return Log1pAtanh(d, x, [d](V<D> w) { return Horner(d, w, poly::kAtanhTailDeg3); });
+}
+
+/// ln(1 + x) to ~1.5 ulp relative for x ∈ [√½ − 1, √2 − 1]: the full tail polynomial by Estrin's
+/// scheme (6.8e-16 on a term ≤ 2e-4 of the sum).
 template <class D>
 HWY_INLINE V<D> Log1pPlain(D d, V<D> x) {
-  const V<D> z = hn::Div(x, hn::Add(hn::Set(d, 2.0), x));
-  const V<D> w = hn::Mul(z, z);
-  const V<D> q = hn::MulAdd(w, Estrin(d, w, poly::kAtanhTailDeg6), hn::Set(d, 2.0 / 3.0));
-  return hn::MulAdd(hn::Mul(z, w), q, hn::Add(z, z));
+  return Log1pAtanh(d, x, [d](V<D> w) { return Estrin(d, w, poly::kAtanhTailDeg6); });
 }
 
 /// ln c = hi + lo for c > 0 finite (double lanes): e·ln2 + ln(1 + x), ln2 split so that e·ln2_hi

@@ -7,6 +7,7 @@
 //                  paper's Fig. 5 file, up to 1000)
 // Items combine with commas: "0.5,1:4,100". Every value is finite.
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,5 +24,8 @@ std::vector<double> parse_values(std::string_view spec, std::size_t max_values =
 double parse_number(std::string_view text, std::string_view what);
 
 std::vector<double> paper50();
+
+/// `text` cut at every `separator` ("a,,b" → "a", "", "b"; "" → one empty part).
+std::vector<std::string_view> split(std::string_view text, char separator);
 
 }  // namespace specula::io
