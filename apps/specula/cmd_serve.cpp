@@ -1,13 +1,12 @@
 // specula serve: the library's JSON API and the interactive page over HTTP (src/serve/).
-#include <csignal>
 #include <fmt/format.h>
 #include <iostream>
-#include <pthread.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <thread>
 
 #include "cli.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/serve/server.h"
 
 extern char** environ;
@@ -21,26 +20,11 @@ struct ServeOptions {
   bool open = false;
 };
 
-/// SIGINT and SIGTERM blocked in this thread and in every thread it starts afterwards, so that
-/// only the watcher below receives them (sigwait, no async handler).
-sigset_t blocked_stop_signals() {
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  return signals;
-}
-
-/// Stops the server on SIGINT or SIGTERM; returns when either arrives or `done` is set.
-void watch_stop_signals(const sigset_t& signals, serve::Server& server, const std::atomic<bool>& done) {
-  const timespec poll{0, 100'000'000};
-  while (!done) {
-    if (sigtimedwait(&signals, nullptr, &poll) > 0) {
-      server.stop();
-      return;
-    }
-  }
+/// Stops the server once main's StopSignals has seen SIGINT or SIGTERM (request_stop); returns
+/// then or when `done` is set.
+void stop_on_signal(serve::Server& server, const std::atomic<bool>& done) {
+  while (!done && !stop_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (!done) server.stop();
 }
 
 /// Opens the page in the desktop's browser, if there is one (xdg-open); never fails the server.
@@ -54,7 +38,6 @@ void open_in_browser(const std::string& url) {
 }
 
 void serve(const ServeOptions& o) {
-  const sigset_t signals = blocked_stop_signals();
   serve::Server server;
   const int port = server.bind(o.host, o.port);
   if (!serve::is_loopback(o.host))
@@ -64,7 +47,7 @@ void serve(const ServeOptions& o) {
   std::cout << "serving " << url << std::endl;
   if (o.open) open_in_browser(url);
   std::atomic<bool> done = false;
-  std::thread watcher([&] { watch_stop_signals(signals, server, done); });
+  std::thread watcher([&] { stop_on_signal(server, done); });
   server.run();
   done = true;
   watcher.join();

@@ -4,8 +4,11 @@
 
 #include "cli.h"
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
+#include "stop_signals.h"
 
 int main(int argc, char** argv) {
+  const specula::cli::StopSignals stop_signals;  // first: before any thread starts
   CLI::App app{"specula: design, check and ship fast, energy-conserving specular lobes.\n"
                "Run `specula COMMAND --help` for a command's options and an example.",
                "specula"};
@@ -36,6 +39,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;
+  } catch (const specula::Interrupted& e) {
+    std::cerr << "specula: stopped: " << e.what() << '\n';
+    return e.signal() ? specula::cli::exit_code_for_signal(e.signal()) : 1;
   } catch (const specula::InvalidArgument& e) {
     std::cerr << "specula: error: " << e.what() << '\n';
     return 2;

@@ -10,6 +10,7 @@
 #include "endpoints.h"
 #include "fit_jobs.h"
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::serve {
 
@@ -130,6 +131,8 @@ Response Api::handle(const Request& request) {
     return error_response(400, e.what(), "body");
   } catch (const TooManyFits& e) {
     return error_response(429, fmt::format("{} fit jobs are running, the most at once: wait for one or cancel it", e.running));
+  } catch (const Interrupted& e) {
+    return error_response(503, e.signal() ? "the server is stopping" : fmt::format("the request was stopped: {}", e.what()));
   } catch (const std::exception& e) {
     return error_response(500, fmt::format("internal error: {}", e.what()));
   }
