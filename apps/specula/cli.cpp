@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "specula/error.h"
+#include "specula/io/files.h"
 #include "specula/io/values.h"
 
 namespace specula::cli {
@@ -53,9 +54,9 @@ void OutputOptions::emit(const io::Table& table) const {
   write_output(out, format == "json" ? io::to_json(table, round) : io::to_csv(table, round));
 }
 
-std::vector<double> option_values(std::string_view option, std::string_view spec) {
+std::vector<double> option_values(std::string_view option, std::string_view spec, std::size_t max_values) {
   try {
-    return io::parse_values(spec);
+    return io::parse_values(spec, max_values);
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(fmt::format("{}: {}", option, e.what()));
   }

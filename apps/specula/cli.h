@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "specula/io/table.h"
+#include "specula/io/values.h"
 #include "specula/models/model.h"
 #include "specula/queries/queries.h"
 
@@ -43,8 +44,10 @@ struct OutputOptions {
 /// Thrown after a check's report is printed when a property fails: exit code 1.
 struct CheckFailed {};
 
-/// io::parse_values, with the option's name in the error message.
-std::vector<double> option_values(std::string_view option, std::string_view spec);
+/// io::parse_values, with the option's name in the error message; at most `max_values` values
+/// (each command documents its cap, which keeps its worst case bounded in time and memory).
+std::vector<double> option_values(std::string_view option, std::string_view spec,
+                                  std::size_t max_values = io::kMaxValues);
 
 /// Text to stdout, or atomically to `out` if non-empty.
 void write_output(const std::string& out, const std::string& text);

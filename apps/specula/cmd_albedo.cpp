@@ -1,8 +1,16 @@
 // specula albedo: directional albedo ρ(θ_i), by cubature or by Monte Carlo.
+#include <fmt/format.h>
+
 #include "cli.h"
+#include "specula/error.h"
 
 namespace specula::cli {
 namespace {
+
+// The documented caps: angles, and Monte-Carlo samples over all angles (~1e8 per second and core
+// for the cheap models); Ctrl-C stops either.
+constexpr std::size_t kMaxAngles = 10'000;
+constexpr double kMaxTotalSamples = 1e10;
 
 struct AlbedoOptions {
   ModelOptions model;
@@ -14,7 +22,10 @@ struct AlbedoOptions {
 };
 
 io::Table albedo_table(const AlbedoOptions& o) {
-  const queries::AlbedoQuery q{option_values("--theta", o.theta), o.method, o.samples, o.seed};
+  const queries::AlbedoQuery q{option_values("--theta", o.theta, kMaxAngles), o.method, o.samples, o.seed};
+  if (q.method == "monte-carlo" && static_cast<double>(q.samples) * static_cast<double>(q.theta_deg.size()) > kMaxTotalSamples)
+    throw InvalidArgument(fmt::format("--samples {} at {} angles is more than {:g} samples in all", q.samples,
+                                      q.theta_deg.size(), kMaxTotalSamples));
   return queries::albedo_table(o.model.make(), q, queries::Spelling::option);
 }
 
@@ -25,10 +36,10 @@ void add_albedo_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("albedo", "Directional albedo ρ(θ_i): the energy reflected for light from θ_i");
   o->model.add_to(*cmd);
   o->model.add_coef_to(*cmd);
-  cmd->add_option("--theta,-t", o->theta, "Incidence angles in degrees, [0, 90): list or range")->capture_default_str();
+  cmd->add_option("--theta,-t", o->theta, "Incidence angles in degrees, [0, 90): list or range, at most 10000 angles")->capture_default_str();
   cmd->add_option("--method", o->method, "cubature (deterministic, 8+ digits) or monte-carlo (adds standard_error)")->capture_default_str()
       ->check(CLI::IsMember({"cubature", "monte-carlo"}));
-  cmd->add_option("--samples", o->samples, "Monte-Carlo samples per angle")->capture_default_str()->check(CLI::Range(1, 1'000'000'000));
+  cmd->add_option("--samples", o->samples, "Monte-Carlo samples per angle, [1, 1e9]; at most 1e10 over all angles")->capture_default_str()->check(CLI::Range(1, 1'000'000'000));
   cmd->add_option("--seed", o->seed, "Monte-Carlo seed")->capture_default_str();
   o->output.add_to(*cmd);
   cmd->footer(

@@ -10,6 +10,11 @@
 namespace specula::cli {
 namespace {
 
+// The documented caps: a case is one albedo curve (up to ~15 s for GGX at --step 0.01), a pair
+// two evaluations; Ctrl-C stops any of them.
+constexpr std::size_t kMaxCases = 1000, kMaxGrazing = 100;
+constexpr int kMaxPairs = 10'000'000;
+
 struct CheckCliOptions {
   ModelOptions model;
   std::string n;
@@ -23,12 +28,12 @@ struct CheckCliOptions {
 /// The parameter to sweep and its values: --n RANGE is --sweep n=RANGE.
 std::pair<std::string, std::vector<double>> sweep_of(const CheckCliOptions& o) {
   if (!o.n.empty() && !o.sweep.empty()) throw InvalidArgument("give --n or --sweep, not both");
-  if (!o.n.empty()) return {"n", option_values("--n", o.n)};
+  if (!o.n.empty()) return {"n", option_values("--n", o.n, kMaxCases)};
   if (o.sweep.empty()) return {};
   const auto eq = o.sweep.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=RANGE", o.sweep));
-  return {o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1))};
+  return {o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1), kMaxCases)};
 }
 
 std::string describe(const Model& m) {
@@ -67,10 +72,11 @@ void add_check_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("check", "Check energy conservation at every angle, reciprocity and non-negativity");
   o->model.add_to(*cmd);
   o->model.add_coef_to(*cmd);
-  cmd->add_option("--n", o->n, "Check at each of these n (list or range)");
-  cmd->add_option("--sweep", o->sweep, "Check at each value of another parameter: NAME=RANGE (e.g. alpha=0.05:0.5@4)");
-  cmd->add_option("--pairs", o->check.reciprocity_pairs, "Random direction pairs for reciprocity")
-      ->capture_default_str()->check(CLI::Range(1, 100'000'000));
+  cmd->add_option("--n", o->n, "Check at each of these n (list or range, at most 1000 values)");
+  cmd->add_option("--sweep", o->sweep,
+                  "Check at each value of another parameter: NAME=RANGE (e.g. alpha=0.05:0.5@4; at most 1000 values)");
+  cmd->add_option("--pairs", o->check.reciprocity_pairs, "Random direction pairs for reciprocity, [1, 1e7]")
+      ->capture_default_str()->check(CLI::Range(1, kMaxPairs));
   cmd->add_option("--seed", o->check.seed, "Seed of the direction pairs")->capture_default_str();
   cmd->add_option("--step", o->check.grid_step_deg, "θ_i grid step in degrees before refinement")
       ->capture_default_str()->check(CLI::Range(0.01, 45.0));
@@ -89,7 +95,7 @@ void add_check_command(CLI::App& app) {
       "  specula check --model log-normalized -p n=20 --form nh   # k made for rv breaks in nh\n"
       "  specula check --model log -p n=20 --form nh --coef $(specula normalize --model log --form nh --n 20 | tail -1 | cut -d, -f2)");
   cmd->callback([o] {
-    o->check.grazing_deg = option_values("--grazing", o->grazing);
+    o->check.grazing_deg = option_values("--grazing", o->grazing, kMaxGrazing);
     auto [sweep, values] = sweep_of(*o);
     const auto cases = queries::check_cases({o->model.spec(), sweep, values, o->check}, queries::Spelling::option);
     const double last_probe = std::max(89.0, *std::max_element(o->check.grazing_deg.begin(), o->check.grazing_deg.end()));

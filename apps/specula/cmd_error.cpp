@@ -4,6 +4,9 @@
 namespace specula::cli {
 namespace {
 
+// The documented cap: each n is two exact maximum searches (milliseconds); Ctrl-C stops them.
+constexpr std::size_t kMaxN = 10'000;
+
 struct ErrorOptions {
   ModelOptions model;
   OutputOptions output;
@@ -13,7 +16,7 @@ struct ErrorOptions {
 };
 
 io::Table error_table(const ErrorOptions& o) {
-  const queries::ErrorQuery q{o.model.id, o.model.param_values(), o.reference, option_values("--n", o.n), o.zone};
+  const queries::ErrorQuery q{o.model.id, o.model.param_values(), o.reference, option_values("--n", o.n, kMaxN), o.zone};
   return queries::error_table(q, queries::Spelling::option);
 }
 
@@ -24,7 +27,7 @@ void add_error_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("error", "Approximation error of a lobe against a reference lobe, per n");
   o->model.add_to(*cmd, false);
   cmd->add_option("--reference,-r", o->reference, "The reference lobe model")->capture_default_str();
-  cmd->add_option("--n", o->n, "Exponents: list or range")->capture_default_str();
+  cmd->add_option("--n", o->n, "Exponents: list or range, at most 10000 values")->capture_default_str();
   cmd->add_option("--zone", o->zone, "The epicenter: where the reference ≥ zone × its peak; zone in (0, 1)")->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   o->output.add_to(*cmd);

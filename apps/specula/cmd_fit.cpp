@@ -170,13 +170,14 @@ void run(const FitOptions& o) {
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
   auto* cmd = app.add_subcommand("fit", "Symbolic regression: find closed-form formulas for a CSV column");
-  cmd->add_option("--data", o->data, "CSV file with a header line")->required();
+  cmd->add_option("--data", o->data, "CSV file with a header line (at most 256 MiB and 10^6 rows)")->required();
   cmd->add_option("--target", o->target, "The column to fit")->required();
   cmd->add_option("--vars", o->vars, "Variable columns, comma-separated (default: every other column)");
   cmd->add_option("--ops", o->ops, "Operators: some of + - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos")
       ->capture_default_str();
   cmd->add_option("--constants", o->constants, "fitted | integer (fitted, then rounded) | none")->capture_default_str();
-  cmd->add_option("--max-size", o->search.max_size, "Largest formula, in weighted nodes")->capture_default_str();
+  cmd->add_option("--max-size", o->search.max_size, "Largest formula, in weighted nodes, [1, 100]")
+      ->capture_default_str()->check(CLI::Range(1, fit::OptionRanges::max_size));
   cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\"")
       ->capture_default_str();
   cmd->add_option("--metric", o->metric, "rms | mae | max-abs | mean-relative | r2")->capture_default_str();
@@ -184,16 +185,21 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--split", o->split, "Which rows are held out: random | last")->capture_default_str();
   cmd->add_option("--seed", o->search.seed, "Seed of the search and of the random split")->capture_default_str();
-  cmd->add_option("--time", o->search.time_limit_s, "Time budget in seconds")->capture_default_str();
-  cmd->add_option("--generations", o->generations, "Generation budget (per island)");
-  cmd->add_option("--evaluations", o->evaluations, "Budget in formulas fitted");
+  cmd->add_option("--time", o->search.time_limit_s, "Time budget in seconds, (0, 1e6]; Ctrl-C stops at once")
+      ->capture_default_str()->check(CLI::Range(1e-9, fit::OptionRanges::time_s));
+  cmd->add_option("--generations", o->generations, "Generation budget (per island), ≥ 0")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--evaluations", o->evaluations, "Budget in formulas fitted, ≥ 0")->check(CLI::NonNegativeNumber);
   cmd->add_option("--target-error", o->target_error, "Stop once a formula's train error is this low (R² this high)");
-  cmd->add_option("--threads", o->search.threads, "Threads; 0 = all cores (the result does not depend on it)")
-      ->capture_default_str();
-  cmd->add_option("--islands", o->search.islands, "Islands of the genetic search")->capture_default_str();
-  cmd->add_option("--population", o->search.population, "Formulas per island")->capture_default_str();
-  cmd->add_option("--enumerate-size", o->search.enumerate_max_size, "Enumerate every distinct form up to this size first")
-      ->capture_default_str();
+  cmd->add_option("--threads", o->search.threads, "Threads, [0, 1024]; 0 = all cores (the result does not depend on it)")
+      ->capture_default_str()->check(CLI::Range(0, fit::OptionRanges::threads));
+  cmd->add_option("--islands", o->search.islands, "Islands of the genetic search, [1, 64]")
+      ->capture_default_str()->check(CLI::Range(1, fit::OptionRanges::islands));
+  cmd->add_option("--population", o->search.population, "Formulas per island, [4, 20000]")
+      ->capture_default_str()->check(CLI::Range(4, fit::OptionRanges::population));
+  cmd->add_option("--enumerate-size", o->search.enumerate_max_size,
+                  "Enumerate every distinct form up to this size first, [0, 30] (at most 20000 forms)")
+      ->capture_default_str()->check(CLI::Range(0, fit::OptionRanges::enumerate_size));
   cmd->add_option("--choose", o->choose, "Which front formula is the answer: parsimonious | knee | best")
       ->capture_default_str();
   cmd->add_option("--choose-factor", o->search.choose_factor,

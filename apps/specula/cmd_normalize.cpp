@@ -4,6 +4,10 @@
 namespace specula::cli {
 namespace {
 
+// The documented cap: each n is a closed form or one quadrature (milliseconds; the strict
+// condition: a search over θ_i); Ctrl-C stops them.
+constexpr std::size_t kMaxN = 10'000;
+
 struct NormalizeOptions {
   ModelOptions model;
   OutputOptions output;
@@ -17,7 +21,7 @@ struct NormalizeOptions {
 io::Table normalize_table(const NormalizeOptions& o) {
   queries::NormalizeQuery q{o.model.id, o.model.param_values(), o.model.form_override(), {},
                             o.method, o.compare, o.condition, o.step};
-  if (!o.n.empty()) q.n = option_values("--n", o.n);
+  if (!o.n.empty()) q.n = option_values("--n", o.n, kMaxN);
   return queries::normalize_table(q, queries::Spelling::option);
 }
 
@@ -28,7 +32,7 @@ void add_normalize_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("normalize",
                                  "Normalizing coefficient k(n) of a lobe: albedo 1 at normal incidence");
   o->model.add_to(*cmd);
-  cmd->add_option("--n", o->n, "Exponents: list or range (1:7  1:1000@50:log  paper50)");
+  cmd->add_option("--n", o->n, "Exponents: list or range (1:7  1:1000@50:log  paper50), at most 10000 values");
   cmd->add_option("--method", o->method,
                   "auto (closed form where known, else quadrature), exact, quadrature, or both "
                   "(adds coef_quadrature and rel_diff)")

@@ -2,12 +2,18 @@
 #include <fmt/format.h>
 #include <iostream>
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
 #include "cli.h"
 #include "specula/error.h"
 #include "specula/interrupt/interrupt.h"
 #include "stop_signals.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   const specula::cli::StopSignals stop_signals;  // first: before any thread starts
   CLI::App app{"specula: design, check and ship fast, energy-conserving specular lobes.\n"
                "Run `specula COMMAND --help` for a command's options and an example.",
@@ -15,7 +21,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Example:\n  specula normalize --model log --n 1:7 --round 3   # the paper's Fig. 5 table");
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return std::string("specula: error: ") + e.what() + " (see --help)\n";
+    return "specula: error: " + specula::one_line(e.what()) + " (see --help)\n";
   });
   specula::cli::add_models_command(app);
   specula::cli::add_eval_command(app);
@@ -43,11 +49,23 @@ int main(int argc, char** argv) {
     std::cerr << "specula: stopped: " << e.what() << '\n';
     return e.signal() ? specula::cli::exit_code_for_signal(e.signal()) : 1;
   } catch (const specula::InvalidArgument& e) {
-    std::cerr << "specula: error: " << e.what() << '\n';
+    std::cerr << "specula: error: " << specula::one_line(e.what()) << '\n';
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "specula: internal error: " << e.what() << '\n';
+    std::cerr << "specula: internal error: " << specula::one_line(e.what()) << '\n';
     return 3;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int code = run(argc, argv);
+#if defined(__SANITIZE_ADDRESS__)
+  // LeakSanitizer's check now, while the worker threads (oneTBB's, Mesa's llvmpipe after a GL
+  // render) are idle, instead of at exit, where its tracer can crash on a thread being torn down.
+  __lsan_do_leak_check();
+#endif
+  return code;
 }

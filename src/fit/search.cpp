@@ -17,6 +17,7 @@
 #include "constants.h"
 #include "genome.h"
 #include "specula/fit/fit.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::fit {
 
@@ -101,18 +102,26 @@ void validate(const Data& data, const Options& o) {
       if (data.target[r] == 0)
         throw InvalidArgument(fmt::format(
             "the mean-relative error needs a non-zero target, but row {} is 0", r + 1));
-  if (o.max_size < 1) throw InvalidArgument("--max-size must be at least 1");
-  if (o.enumerate_max_size < 0 || o.enumerate_limit < 0)
-    throw InvalidArgument("the enumeration size and limit must be ≥ 0");
+  using R = OptionRanges;
+  const auto in_range = [](auto value, auto lo, auto hi, std::string_view what) {
+    if (!(value >= lo && value <= hi))
+      throw InvalidArgument(fmt::format("{} must be in [{}, {}], got {}", what, lo, hi, value));
+  };
+  in_range(o.max_size, 1, R::max_size, "--max-size");
+  in_range(o.enumerate_max_size, 0, R::enumerate_size, "--enumerate-size");
+  in_range(o.enumerate_limit, 0, R::enumerate_limit, "the enumeration limit");
+  in_range(o.islands, 1, R::islands, "--islands");
+  in_range(o.population, 4, R::population, "--population");
+  in_range(o.threads, 0, R::threads, "--threads");
+  if (data.target.size() > R::rows)
+    throw InvalidArgument(fmt::format("{} data rows; at most {}", data.target.size(), R::rows));
   if (o.max_generations.value_or(0) < 0 || o.max_evaluations.value_or(0) < 0)
     throw InvalidArgument("the generation and evaluation budgets must be ≥ 0");
   if (!(o.choose_factor >= 1)) throw InvalidArgument("the choose factor must be ≥ 1");
   if (!(o.test_fraction >= 0 && o.test_fraction < 1))
     throw InvalidArgument("the test fraction must be in [0, 1)");
-  if (!(o.time_limit_s > 0)) throw InvalidArgument("the time limit must be positive");
-  if (o.islands < 1 || o.population < 4)
-    throw InvalidArgument("need at least 1 island of at least 4 formulas");
-  if (o.threads < 0) throw InvalidArgument("threads must be 0 (all cores) or more");
+  if (!(o.time_limit_s > 0 && o.time_limit_s <= R::time_s))
+    throw InvalidArgument(fmt::format("the time limit must be in (0, {:g}] seconds", R::time_s));
   if (o.target_error && !(*o.target_error >= 0))
     throw InvalidArgument("the target error must be a number ≥ 0");
 }
@@ -187,8 +196,9 @@ std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
   std::vector<Genome> all;
   std::unordered_set<std::string> seen;
   const auto limit = static_cast<std::size_t>(o.enumerate_limit);
+  const auto full = [&] { return all.size() >= limit; };
   const auto add = [&](Genome g, int size) {
-    if (all.size() >= limit || !seen.insert(canonical_key(g)).second) return;
+    if (full() || !seen.insert(canonical_key(g)).second) return;
     by_size[static_cast<std::size_t>(size)].push_back(g);
     all.push_back(std::move(g));
   };
@@ -198,7 +208,7 @@ std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
     g.push_back({op, 0, 0});
     return g;
   };
-  for (int size = 1; size <= std::min(o.enumerate_max_size, o.max_size) && all.size() < limit; ++size) {
+  for (int size = 1; size <= std::min(o.enumerate_max_size, o.max_size) && !full(); ++size) {
     if (size == a.weights.of(Op::variable))
       for (std::uint32_t v = 0; v < a.variables; ++v) add({{Op::variable, v, 0}}, size);
     if (size == a.weights.of(Op::constant) && a.constants != Constants::none)
@@ -206,13 +216,19 @@ std::vector<Genome> enumerate_forms(const Alphabet& a, const Options& o) {
     for (Op op : a.unary) {
       const int rest = size - a.weights.of(op);
       if (rest >= 1)
-        for (const auto& x : by_size[static_cast<std::size_t>(rest)]) add(join(x, nullptr, op), size);
+        for (const auto& x : by_size[static_cast<std::size_t>(rest)]) {
+          if (full()) break;
+          add(join(x, nullptr, op), size);
+        }
     }
     for (Op op : a.binary)
-      for (int left = 1; left < size - a.weights.of(op); ++left) {
+      for (int left = 1; left < size - a.weights.of(op) && !full(); ++left) {
         const int right = size - a.weights.of(op) - left;
         for (const auto& x : by_size[static_cast<std::size_t>(left)])
-          for (const auto& y : by_size[static_cast<std::size_t>(right)]) add(join(x, &y, op), size);
+          for (const auto& y : by_size[static_cast<std::size_t>(right)]) {
+            if (full()) break;
+            add(join(x, &y, op), size);
+          }
       }
   }
   return all;
@@ -262,14 +278,44 @@ std::vector<std::size_t> pareto_order(const std::vector<Individual>& xs, const s
   return order;
 }
 
+// The budgets every loop of the search looks at: the time limit (and the calling thread's
+// deadline), the cancel flags, a process-wide stop request. Thread-safe: islands poll it.
+class Budget {
+ public:
+  explicit Budget(const Options& o) : options_(o), limit_(current_limit()) {}
+
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  bool cancelled() const {
+    return (options_.cancel && options_.cancel->load()) || (limit_.cancel && limit_.cancel->load());
+  }
+  bool out_of_time() const {
+    return seconds() >= options_.time_limit_s || std::chrono::steady_clock::now() >= limit_.deadline;
+  }
+  bool expired() const { return stop_requested() || cancelled() || out_of_time(); }
+
+ private:
+  const Options& options_;
+  const WorkLimit limit_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Random formulas tried per population slot before the formula space counts as exhausted (it can
+// be smaller than the population: one variable, "+" and size 1 make few distinct formulas).
+constexpr std::size_t kAttemptsPerSlot = 20;
+
 class Island {
  public:
-  Island(const Problem& p, const Alphabet& a, const Options& o, std::uint64_t stream)
-      : problem_(p), alphabet_(a), options_(o), rng_(o.seed * 0x9E3779B97F4A7C15ULL + stream) {}
+  Island(const Problem& p, const Alphabet& a, const Options& o, const Budget& budget, std::uint64_t stream)
+      : problem_(p), alphabet_(a), options_(o), budget_(budget), rng_(o.seed * 0x9E3779B97F4A7C15ULL + stream),
+        cache_limit_(std::min<std::size_t>(200'000, 800'000 / static_cast<std::size_t>(o.islands))) {}
 
   void populate(const std::vector<Individual>& seeds) {
     for (const auto& s : seeds) admit(s);
-    while (population_.size() < static_cast<std::size_t>(options_.population)) {
+    const auto wanted = static_cast<std::size_t>(options_.population);
+    for (std::size_t attempt = 0; population_.size() < wanted && attempt < kAttemptsPerSlot * wanted; ++attempt) {
+      if (budget_.expired()) break;
       const int size = std::uniform_int_distribution<int>(1, std::min(alphabet_.max_size, 15))(rng_);
       admit(evaluate(alphabet_.random_tree(rng_, size)));
     }
@@ -279,6 +325,7 @@ class Island {
   void generation() {
     std::vector<Individual> children;
     for (std::size_t i = 0; i < population_.size(); ++i) {
+      if (budget_.expired()) break;
       Genome child;
       if (std::uniform_real_distribution<double>(0, 1)(rng_) < 0.5) {
         const Genome& mother = tournament().genome;
@@ -313,7 +360,7 @@ class Island {
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
     ++evaluations_;
     Individual x = problem_.evaluate(g, key);
-    if (cache_.size() > 200000) cache_.clear();
+    if (cache_.size() > cache_limit_) cache_.clear();
     cache_.emplace(key, x);
     return x;
   }
@@ -349,7 +396,9 @@ class Island {
   const Problem& problem_;
   const Alphabet& alphabet_;
   const Options& options_;
+  const Budget& budget_;
   Rng rng_;
+  std::size_t cache_limit_;  // memoized formulas, ≤ 800k over all islands
   std::vector<Individual> population_;
   std::vector<int> rank_;
   std::unordered_set<std::string> present_;
@@ -360,16 +409,6 @@ class Island {
 constexpr int kEpochGenerations = 5;
 constexpr std::size_t kMigrants = 5;
 constexpr std::size_t kEnumerationChunk = 512;
-
-class Clock {
- public:
-  double seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 Candidate candidate(const Individual& x, const Problem& p, const Data& data) {
   Candidate c{expr::Expression(x.genome, data.variables), x.size,
@@ -405,6 +444,7 @@ class Search {
         problem_(make_problem(data, o)),
         alphabet_(o, static_cast<std::uint32_t>(data.variables.size())),
         arena_(std::min(o.threads > 0 ? o.threads : 1 << 20, oneapi::tbb::info::default_concurrency())),
+        budget_(o),
         archive_(rounding_noise(problem_)) {}
 
   Result run() {
@@ -414,14 +454,17 @@ class Search {
     if (!stopped()) evolve(fitted);
     Result result;
     for (const Individual* x : archive_.front()) result.front.push_back(candidate(*x, problem_, data_));
-    if (result.front.empty()) throw InvalidArgument("no formula could be evaluated on these data");
+    if (result.front.empty())
+      throw InvalidArgument(stopped_by_ == "cancelled" || stopped_by_ == "time"
+                                ? fmt::format("the search stopped ({}) before any formula was evaluated", stopped_by_)
+                                : std::string("no formula could be evaluated on these data"));
     double mean_square = 0;
     for (double y : data_.target) mean_square += y * y / static_cast<double>(data_.target.size());
     result.chosen = choose(result.front, options_.metric, options_.choice, options_.choose_factor,
                            std::sqrt(mean_square));
     result.evaluations = evaluations_;
     result.generations = generations_;
-    result.seconds = clock_.seconds();
+    result.seconds = budget_.seconds();
     result.stopped_by = stopped_by_;
     return result;
   }
@@ -433,11 +476,14 @@ class Search {
     for (std::size_t first = 0; first < forms.size() && !stopped(); first += kEnumerationChunk) {
       const std::size_t last = std::min(forms.size(), first + kEnumerationChunk);
       arena_.execute([&] {
-        oneapi::tbb::parallel_for(first, last,
-                                  [&](std::size_t i) { fitted[i] = fit_form(problem_, forms[i]); });
+        oneapi::tbb::parallel_for(first, last, [&](std::size_t i) {
+          if (!budget_.expired()) fitted[i] = fit_form(problem_, forms[i]);
+        });
       });
       for (std::size_t i = first; i < last; ++i) archive_.offer(fitted[i]);
-      evaluations_ += static_cast<std::int64_t>(last - first);
+      evaluations_ += std::count_if(fitted.begin() + static_cast<std::ptrdiff_t>(first),
+                                    fitted.begin() + static_cast<std::ptrdiff_t>(last),
+                                    [](const Individual& x) { return !x.genome.empty(); });
       check_budget(false);
       report();
     }
@@ -448,12 +494,14 @@ class Search {
   void evolve(const std::vector<Individual>& fitted) {
     const auto count = static_cast<std::size_t>(options_.islands);
     std::vector<Island> islands;
-    for (std::size_t i = 0; i < count; ++i) islands.emplace_back(problem_, alphabet_, options_, i + 1);
+    for (std::size_t i = 0; i < count; ++i) islands.emplace_back(problem_, alphabet_, options_, budget_, i + 1);
     const std::int64_t enumerated = evaluations_;
     const auto seeds = seeds_for(fitted, count, static_cast<std::size_t>(options_.population) / 2);
     in_parallel(islands, [&](Island& island, std::size_t i) {
       island.populate(seeds[i]);
     });
+    collect(islands, enumerated);
+    check_budget(false);
     while (!stopped()) {
       const int epoch = options_.max_generations
                             ? static_cast<int>(std::min<std::int64_t>(
@@ -463,14 +511,19 @@ class Search {
         for (int g = 0; g < epoch; ++g) island.generation();
       });
       generations_ += epoch;
-      evaluations_ = enumerated;
-      for (const auto& island : islands) {
-        evaluations_ += island.evaluations();
-        for (const auto& x : island.population()) archive_.offer(x);
-      }
+      collect(islands, enumerated);
       migrate(islands);
       check_budget(true);
       report();
+    }
+  }
+
+  // The islands' formulas into the archive, their evaluations into the count.
+  void collect(const std::vector<Island>& islands, std::int64_t enumerated) {
+    evaluations_ = enumerated;
+    for (const auto& island : islands) {
+      evaluations_ += island.evaluations();
+      for (const auto& x : island.population()) archive_.offer(x);
     }
   }
 
@@ -491,8 +544,9 @@ class Search {
 
   // The generation budget applies to the genetic search only.
   void check_budget(bool evolving) {
+    if (const int signal = stop_requested()) throw Interrupted(Interrupted::Reason::signal, signal);
     const auto front = archive_.front();
-    if (options_.cancel && options_.cancel->load())
+    if (budget_.cancelled())
       stopped_by_ = "cancelled";
     else if (options_.target_error && !front.empty() &&
         front.back()->loss <= to_loss(options_.metric, *options_.target_error))
@@ -501,7 +555,7 @@ class Search {
       stopped_by_ = "evaluations";
     else if (options_.max_generations && generations_ >= *options_.max_generations && evolving)
       stopped_by_ = "generations";
-    else if (clock_.seconds() >= options_.time_limit_s)
+    else if (budget_.out_of_time())
       stopped_by_ = "time";
   }
 
@@ -511,7 +565,7 @@ class Search {
     if (!progress_) return;
     std::vector<Candidate> front;
     for (const Individual* x : archive_.front()) front.push_back(candidate(*x, problem_, data_));
-    const double elapsed = clock_.seconds();
+    const double elapsed = budget_.seconds();
     progress_(Progress{elapsed, std::max(0.0, options_.time_limit_s - elapsed), evaluations_,
                        generations_, &front});
   }
@@ -522,7 +576,7 @@ class Search {
   const Problem problem_;
   const Alphabet alphabet_;
   oneapi::tbb::task_arena arena_;
-  Clock clock_;
+  Budget budget_;
   Archive archive_;
   std::int64_t evaluations_ = 0, generations_ = 0;
   std::string stopped_by_;

@@ -1,14 +1,11 @@
 #include "specula/io/csv.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
-#include <cstring>
 #include <fmt/format.h>
-#include <fstream>
-#include <sstream>
 
 #include "specula/error.h"
+#include "specula/io/files.h"
 
 namespace specula::io {
 namespace {
@@ -145,10 +142,6 @@ void append_row(CsvData& data, const Line& line, std::string_view source) {
   data.lines.push_back(line.number);
 }
 
-[[noreturn]] void cannot_read(const std::filesystem::path& path, std::string_view why) {
-  throw InvalidArgument(fmt::format("cannot read '{}': {}", path.string(), why));
-}
-
 }  // namespace
 
 CsvData parse_csv(std::string_view text, std::string_view source) {
@@ -164,14 +157,7 @@ CsvData parse_csv(std::string_view text, std::string_view source) {
   return data;
 }
 
-CsvData read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) cannot_read(path, std::strerror(errno));
-  if (std::filesystem::is_directory(path)) cannot_read(path, "it is a directory");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_csv(text.str(), path.string());
-}
+CsvData read_csv(const std::filesystem::path& path) { return parse_csv(read_file(path), path.string()); }
 
 std::size_t column_index(const CsvData& data, std::string_view name) {
   const auto it = std::find(data.columns.begin(), data.columns.end(), name);

@@ -1,12 +1,9 @@
 #include "specula/io/table.h"
 
 #include <cmath>
-#include <cstring>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "specula/error.h"
 
@@ -46,33 +43,6 @@ std::string to_json(const Table& table, std::optional<int> decimals) {
     out["rows"].push_back(std::move(object));
   }
   return out.dump(2) + "\n";
-}
-
-void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
-  auto fail = [&](const std::string& why) {
-    throw InvalidArgument(fmt::format("cannot write '{}': {}", path.string(), why));
-  };
-  if (path.empty()) fail("empty file name");
-  std::filesystem::path tmp = path;
-  tmp += fmt::format(".tmp-{}", ::getpid());
-  {
-    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-    if (!file) fail(std::strerror(errno));
-    file.write(content.data(), static_cast<std::streamsize>(content.size()));
-    file.flush();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      fail("write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    fail(ec.message());
-  }
 }
 
 }  // namespace specula::io

@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "specula/error.h"
+#include "specula/io/files.h"
 #include "specula/io/table.h"
 
 namespace specula::render {
@@ -32,16 +33,6 @@ namespace {
 
 [[noreturn]] void cannot_write(const std::filesystem::path& path, std::string_view why) {
   throw InvalidArgument(fmt::format("cannot write '{}': {}", path.string(), why));
-}
-
-std::string file_bytes(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) cannot_read(path, "it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) cannot_read(path, std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return std::move(bytes).str();
 }
 
 // libpng reports errors through a callback that must not return; it longjmps back to the
@@ -302,7 +293,7 @@ ImageFormat image_format(const std::filesystem::path& path) {
 }
 
 ImageFile read_png(const std::filesystem::path& path) {
-  return decode_png(path, file_bytes(path));
+  return decode_png(path, io::read_file(path));
 }
 
 ImageFile read_exr(const std::filesystem::path& path) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "specula/brdf/directions.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/render/bvh.h"
 #include "specula/simd/brdf.h"
 
@@ -275,16 +276,18 @@ Image render_cpu(const Scene& scene, const RenderSettings& settings) {
   validate(scene);
   const Shader shader(scene);
   const PinholeRays rays(scene.camera, settings.width, settings.height);
-  tbb::parallel_for(tbb::blocked_range<int>(0, settings.height), [&](const tbb::blocked_range<int>& rows) {
+  const auto shade_rows = [&](const tbb::blocked_range<int>& rows) {
     RowScratch scratch;
     for (int y = rows.begin(); y < rows.end(); ++y) {
+      check_interrupt();
       if (settings.batch_shading) {
         shader.shade_row(rays, y, scratch, image);
         continue;
       }
       for (int x = 0; x < settings.width; ++x) image.set(x, y, shader.radiance(rays(x, y)));
     }
-  });
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, settings.height), carry_limit(shade_rows));
   return image;
 }
 

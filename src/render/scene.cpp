@@ -9,6 +9,7 @@
 
 #include "specula/brdf/directions.h"
 #include "specula/error.h"
+#include "specula/io/files.h"
 #include "specula/io/table.h"
 #include "specula/io/values.h"
 
@@ -101,13 +102,11 @@ void check_camera(const Camera& camera) {
 }  // namespace
 
 std::vector<Triangle> load_obj(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    cannot_read(path, std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+  const std::string text = io::read_file(path);
   tinyobj::ObjReaderConfig config;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config)) cannot_read(path, first_line(reader.Error()));
+  if (!reader.ParseFromString(text, "", config)) cannot_read(path, first_line(reader.Error()));
   std::vector<Triangle> triangles;
   for (const auto& shape : reader.GetShapes()) {
     std::size_t offset = 0;
@@ -177,6 +176,8 @@ void validate(const Scene& scene) {
   for (const Sphere& s : scene.spheres)
     if (!finite(s.centre) || !(s.radius > 0) || !std::isfinite(s.radius))
       throw InvalidArgument(fmt::format("sphere of radius {}: the centre must be finite, the radius finite and > 0", s.radius));
+  if (scene.lights.size() > kMaxLights)
+    throw InvalidArgument(fmt::format("{} lights; a scene takes at most {}", scene.lights.size(), kMaxLights));
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     check_light(scene.lights[i], fmt::format("light {} ({})", i + 1, to_string(scene.lights[i])));
   const Material& m = scene.material;

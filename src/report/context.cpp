@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "specula/error.h"
+#include "specula/io/files.h"
 #include "specula/io/table.h"
 
 namespace specula::report {
@@ -50,14 +51,6 @@ std::string to_json(const DataTable& table) {
     rows.push_back(std::move(object));
   }
   return nlohmann::ordered_json{{"table", table.name}, {"columns", table.columns}, {"rows", rows}}.dump(1) + "\n";
-}
-
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidArgument(fmt::format("cannot read '{}'", path.string()));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
 }
 
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,

@@ -32,8 +32,6 @@ std::string to_json(const DataTable& table);
 /// xml_escape, plot.h).
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                        const std::string& css_class = "");
-/// The whole file as bytes; throws InvalidArgument if it cannot be read.
-std::string read_bytes(const std::filesystem::path& path);
 std::string base64(std::string_view bytes);
 
 /// A number the way the page shows it: `digits` significant digits, scientific when tiny or huge.

@@ -8,6 +8,7 @@
 #include "context.h"
 #include "sections.h"
 #include "specula/error.h"
+#include "specula/io/files.h"
 
 namespace specula::report {
 namespace {
@@ -58,12 +59,10 @@ this page. Every number is computed by specula at report time; the paper's own n
 
 }  // namespace
 
-void write_report(const Options& options) {
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(options.out_dir))
-    throw InvalidArgument(fmt::format("cannot create '{}': {}", options.out_dir.string(),
-                                      ec ? ec.message() : "it is not a directory"));
+void write_report(const Options& requested) {
+  io::StagedDirectory out(requested.out_dir);
+  Options options = requested;
+  options.out_dir = out.path();
   const auto start = std::chrono::steady_clock::now();
   Context context(options);
   std::vector<Section> sections;
@@ -78,6 +77,7 @@ void write_report(const Options& options) {
   context.progress("index.html");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   context.write("index.html", page(sections, context, seconds));
+  out.commit();
 }
 
 }  // namespace specula::report

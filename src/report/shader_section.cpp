@@ -4,6 +4,7 @@
 
 #include "sections.h"
 #include "specula/gl/glsl.h"
+#include "specula/io/files.h"
 #include "specula/render/image_io.h"
 #include "specula/render/panel.h"
 #include "specula/render/render.h"
@@ -53,7 +54,7 @@ std::string panel_figure(Context& context, const std::string& name, const std::v
   const render::ComparisonPanel panel = render::compose_comparison(panels, {}, {}, heat_maps);
   const auto path = context.dir() / (name + ".png");
   render::write_png(path, panel.image, {{"Software", "specula report"}, {"figure", name}});
-  return context.png_figure(name, read_bytes(path), caption, command);
+  return context.png_figure(name, io::read_file(path), caption, command);
 }
 
 namespace {

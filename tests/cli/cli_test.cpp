@@ -27,6 +27,7 @@
 
 #include "specula/expr/expr.h"
 #include "specula/models/model.h"
+#include "cli_fixture.h"
 #include "text_support.h"
 
 extern char** environ;
@@ -40,6 +41,9 @@ using specula::testing::cells_of;
 using specula::testing::lines_of;
 using specula::testing::read_file;
 using ::testing::IsEmpty;
+using specula::testing::Cli;
+using specula::testing::Result;
+using specula::testing::listing;
 
 constexpr double kPi = std::numbers::pi;
 // Independent mpmath values (MATH.md §4).
@@ -91,97 +95,6 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
   for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++count;
   return count;
 }
-
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
-  return names;
-}
-
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::ostream& operator<<(std::ostream& os, const Result& r) {
-  return os << "exit " << r.code << "\n--- stdout:\n" << r.out << "--- stderr:\n" << r.err;
-}
-
-// A fresh directory per test, removed afterwards; also holds the captured stdout/stderr.
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    dir_ = fs::temp_directory_path() /
-           fmt::format("specula-cli-test-{}-{}-{}", ::getpid(), counter++,
-                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "work");
-    fs::create_directories(dir_ / "capture");
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-
-  /// An empty directory for the command's files.
-  fs::path work() const { return dir_ / "work"; }
-
-  /// Runs `specula args…` (no shell), capturing stdout, stderr and the exit code.
-  Result run(const std::vector<std::string>& args) {
-    const fs::path out = dir_ / "capture" / "stdout";
-    const fs::path err = dir_ / "capture" / "stderr";
-    std::vector<std::string> argv_strings{SPECULA_CLI};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argv_strings) argv.push_back(a.data());
-    argv.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, SPECULA_CLI, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    Result r;
-    if (spawned != 0) {
-      ADD_FAILURE() << "cannot run " << SPECULA_CLI << ": " << std::strerror(spawned);
-      return r;
-    }
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.out = read_file(out);
-    r.err = read_file(err);
-    return r;
-  }
-
-  /// Runs a command that must succeed with nothing on stderr.
-  Result ok(const std::vector<std::string>& args) {
-    Result r = run(args);
-    EXPECT_EQ(r.code, 0) << fmt::format("specula {}\n", fmt::join(args, " ")) << r;
-    EXPECT_THAT(r.err, IsEmpty()) << fmt::format("specula {}", fmt::join(args, " "));
-    return r;
-  }
-
-  /// Runs a command that must fail as bad input: exit 2, one line on stderr, nothing on stdout.
-  Result bad(const std::vector<std::string>& args) {
-    Result r = run(args);
-    const std::string what = fmt::format("specula {}\n", fmt::join(args, " "));
-    EXPECT_EQ(r.code, 2) << what << r;
-    EXPECT_THAT(r.out, IsEmpty()) << what << r;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << r;
-    EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << what << r;
-    return r;
-  }
-
- private:
-  fs::path dir_;
-};
 
 // ---- normalize ------------------------------------------------------------------------------
 

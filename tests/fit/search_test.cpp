@@ -3,10 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <thread>
 
 #include "specula/error.h"
 #include "specula/fit/fit.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"
 #include "specula/normalize/closed_form.h"
 
@@ -205,6 +212,123 @@ TEST(Search, RejectsBadDataAndOptions) {
   o = quick();
   o.max_size = 0;
   EXPECT_THROW(search(good, o), InvalidArgument);
+}
+
+// ---- every budget is honoured by every loop (issue: a fit that never stops) ------------------
+
+// Runs the search on another thread; a search still running after `limit` fails the test and
+// ends the binary (a hang would otherwise hold it until ctest's timeout).
+Result finishes_within(std::chrono::seconds limit, const Data& d, const Options& o) {
+  auto running = std::async(std::launch::async, [&] { return search(d, o); });
+  if (running.wait_for(limit) != std::future_status::ready) {
+    std::fprintf(stderr, "the search did not stop within %lld s\n", static_cast<long long>(limit.count()));
+    std::_Exit(1);
+  }
+  return running.get();
+}
+
+Data three_rows() { return Data{{"n"}, {{1, 2, 3}}, {0.3, 0.5, 0.6}}; }
+
+TEST(SearchBudget, AFormulaSpaceSmallerThanThePopulationStopsAtTheTimeBudget) {
+  Options o;
+  o.operators = parse_operators("+");
+  o.max_size = 1;
+  o.time_limit_s = 1;
+  o.threads = 2;
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = finishes_within(std::chrono::seconds(60), three_rows(), o);
+  EXPECT_EQ(r.stopped_by, "time");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
+  EXPECT_FALSE(r.front.empty());
+}
+
+TEST(SearchBudget, AFormulaSpaceSmallerThanThePopulationStopsAtTheGenerationBudget) {
+  Options o;
+  o.operators = parse_operators("+");
+  o.max_size = 1;
+  o.max_generations = 2;
+  o.time_limit_s = 1e4;
+  o.threads = 2;
+  const Result r = finishes_within(std::chrono::seconds(60), three_rows(), o);
+  EXPECT_EQ(r.stopped_by, "generations");
+  EXPECT_EQ(r.generations, 2);
+}
+
+TEST(SearchBudget, AHugePopulationStillStopsAtTheTimeBudget) {
+  Options o = quick(2);
+  o.population = OptionRanges::population;
+  o.islands = 2;
+  o.time_limit_s = 1;
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = finishes_within(std::chrono::seconds(60), sampled("x*x + 1", 0, 2, 20), o);
+  EXPECT_EQ(r.stopped_by, "time");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
+}
+
+TEST(SearchBudget, ACancelStopsTheSearchWhileItFillsThePopulation) {
+  std::atomic<bool> cancel = false;
+  Options o = quick(1'000'000);
+  o.population = OptionRanges::population;
+  o.cancel = &cancel;
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    cancel = true;
+  });
+  const Result r = finishes_within(std::chrono::seconds(60), sampled("x*x + 1", 0, 2, 20), o);
+  canceller.join();
+  EXPECT_EQ(r.stopped_by, "cancelled");
+}
+
+TEST(SearchBudget, TheCallersDeadlineCountsAsTheTimeBudget) {
+  Options o = quick(1'000'000);
+  o.operators = parse_operators("+");
+  o.max_size = 1;
+  const Data d = three_rows();
+  auto running = std::async(std::launch::async, [&] {
+    ScopedLimit limit(WorkLimit::after(std::chrono::milliseconds(300)));
+    return search(d, o);
+  });
+  ASSERT_EQ(running.wait_for(std::chrono::seconds(60)), std::future_status::ready);
+  EXPECT_EQ(running.get().stopped_by, "time");
+}
+
+TEST(SearchBudget, AStopRequestEndsTheSearchWithInterrupted) {
+  Options o = quick(1'000'000);
+  std::thread stopper([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    request_stop(SIGINT);
+  });
+  const Data d = sampled("x*x + 1", 0, 2, 20);
+  auto running = std::async(std::launch::async, [&] { return search(d, o); });
+  const bool stopped = running.wait_for(std::chrono::seconds(60)) == std::future_status::ready;
+  stopper.join();
+  clear_stop_request();
+  ASSERT_TRUE(stopped);
+  EXPECT_THROW(running.get(), Interrupted);
+}
+
+TEST(SearchBudget, SizeOptionsOutsideTheirDocumentedRangeAreRefused) {
+  const Data d = sampled("x", 0, 1, 10);
+  const auto refused = [&](auto change) {
+    Options o = quick(0);
+    change(o);
+    EXPECT_THROW(search(d, o), InvalidArgument);
+  };
+  refused([](Options& o) { o.islands = OptionRanges::islands + 1; });
+  refused([](Options& o) { o.islands = 2147483647; });
+  refused([](Options& o) { o.population = OptionRanges::population + 1; });
+  refused([](Options& o) { o.enumerate_max_size = 2147483647; });
+  refused([](Options& o) { o.max_size = OptionRanges::max_size + 1; });
+  refused([](Options& o) { o.threads = 1 << 20; });
+  refused([](Options& o) { o.time_limit_s = 1e7; });
+  // The controls: the largest values inside the ranges are accepted (and finish).
+  Options o = quick(0);
+  o.islands = OptionRanges::islands;
+  o.population = 4;
+  o.enumerate_max_size = OptionRanges::enumerate_size;
+  o.max_size = OptionRanges::max_size;
+  o.time_limit_s = 5;
+  EXPECT_NO_THROW(finishes_within(std::chrono::seconds(120), d, o));
 }
 
 }  // namespace

@@ -1,25 +1,20 @@
 // specula::io tables (include/specula/io/table.h): CSV and JSON text, number formatting and
-// rounding, and atomic file writes.
+// rounding (files: files_test.cpp).
 #include "specula/io/table.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "specula/error.h"
@@ -28,7 +23,6 @@
 namespace specula::io {
 namespace {
 
-namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using specula::testing::cells_of;
 using specula::testing::lines_of;
@@ -38,41 +32,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 
-
-// A fresh, empty directory removed at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            fmt::format("specula-io-test-{}-{}-{}", ::getpid(), counter++,
-                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-  std::set<std::string> listing() const {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path_)) names.insert(entry.path().filename().string());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 Table sample() {
   Table t;
@@ -257,79 +216,6 @@ TEST(ToJson, SameNumbersAsCsv) {
             << "row " << r << " column " << t.columns[c];
     }
   }
-}
-
-// ---- write_file_atomically ------------------------------------------------------------------
-
-TEST(WriteFileAtomically, WritesThenOverwritesLeavingNoTemporaryFiles) {
-  TempDir dir;
-  const fs::path file = dir.path() / "out.csv";
-  write_file_atomically(file, "n,coef\n1,2\n");
-  EXPECT_EQ(read_file(file), "n,coef\n1,2\n");
-  EXPECT_THAT(dir.listing(), ElementsAre("out.csv"));
-
-  write_file_atomically(file, "short\n");  // a shorter text replaces all of the old one
-  EXPECT_EQ(read_file(file), "short\n");
-  EXPECT_THAT(dir.listing(), ElementsAre("out.csv"));
-
-  write_file_atomically(file, "");
-  EXPECT_EQ(read_file(file), "");
-  EXPECT_TRUE(fs::exists(file));
-  EXPECT_THAT(dir.listing(), ElementsAre("out.csv"));
-}
-
-TEST(WriteFileAtomically, WritesBinaryContentVerbatim) {
-  TempDir dir;
-  const fs::path file = dir.path() / "data.bin";
-  std::string content = "a\r\nb\n";
-  content.push_back('\0');
-  content += std::string(100000, 'x');
-  write_file_atomically(file, content);
-  EXPECT_EQ(read_file(file), content);
-  EXPECT_THAT(dir.listing(), ElementsAre("data.bin"));
-}
-
-TEST(WriteFileAtomically, NonexistentDirectoryThrowsAndLeavesNothing) {
-  TempDir dir;
-  const fs::path file = dir.path() / "missing" / "out.csv";
-  try {
-    write_file_atomically(file, "text\n");
-    ADD_FAILURE() << "no exception";
-  } catch (const InvalidArgument& e) {
-    EXPECT_THAT(e.what(), HasSubstr(file.string()));
-  }
-  EXPECT_FALSE(fs::exists(dir.path() / "missing"));
-  EXPECT_TRUE(dir.listing().empty());
-}
-
-TEST(WriteFileAtomically, DirectoryAsTargetThrowsAndLeavesNoPartialFile) {
-  TempDir dir;
-  const fs::path target = dir.path() / "adir";
-  fs::create_directory(target);
-  fs::create_directory(target / "inside");
-  try {
-    write_file_atomically(target, "text\n");
-    ADD_FAILURE() << "no exception";
-  } catch (const InvalidArgument& e) {
-    EXPECT_THAT(e.what(), HasSubstr(target.string()));
-  }
-  EXPECT_TRUE(fs::is_directory(target));
-  EXPECT_TRUE(fs::is_directory(target / "inside"));  // the directory is untouched
-  EXPECT_THAT(dir.listing(), ElementsAre("adir"));   // no temporary file beside it
-}
-
-TEST(WriteFileAtomically, EmptyPathThrows) {
-  EXPECT_THROW(write_file_atomically("", "text"), InvalidArgument);
-}
-
-TEST(WriteFileAtomically, FailureKeepsTheOldContent) {
-  TempDir dir;
-  const fs::path file = dir.path() / "keep.txt";
-  write_file_atomically(file, "old\n");
-  // A file in place of a directory: dir/keep.txt/x cannot be written.
-  EXPECT_THROW(write_file_atomically(file / "x", "new\n"), InvalidArgument);
-  EXPECT_EQ(read_file(file), "old\n");
-  EXPECT_THAT(dir.listing(), ElementsAre("keep.txt"));
 }
 
 }  // namespace

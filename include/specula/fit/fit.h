@@ -65,6 +65,21 @@ enum class Split { random, last };
 enum class Choice { parsimonious, knee, best };
 Choice parse_choice(std::string_view name);
 
+/// The documented range of each size-like option: search() refuses values outside with
+/// InvalidArgument. Within them memory stays below ~2 GiB (populations, per-island caches and
+/// the enumeration are bounded) and every loop of the search looks at the time budget, the
+/// cancel flag and a stop request at least every few thousand formula evaluations.
+struct OptionRanges {
+  static constexpr int max_size = 100;            ///< --max-size in [1, 100]
+  static constexpr int islands = 64;              ///< --islands in [1, 64]
+  static constexpr int population = 20'000;       ///< --population in [4, 20000]
+  static constexpr int enumerate_size = 30;       ///< --enumerate-size in [0, 30]
+  static constexpr int enumerate_limit = 1'000'000;
+  static constexpr int threads = 1024;            ///< --threads in [0, 1024]
+  static constexpr double time_s = 1e6;           ///< --time in (0, 1e6] seconds
+  static constexpr std::size_t rows = 1'000'000;  ///< data rows
+};
+
 struct Options {
   std::vector<expr::Op> operators = {expr::Op::add, expr::Op::mul, expr::Op::div};
   Constants constants = Constants::fitted;
@@ -85,8 +100,10 @@ struct Options {
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
-  /// When set, the search stops at its next budget check (after an enumeration chunk or an
-  /// epoch of generations) with stopped_by "cancelled" and the front found so far.
+  /// When set, the search stops at its next budget check (within an enumeration chunk, a
+  /// population or a generation) with stopped_by "cancelled" and the front found so far. The
+  /// calling thread's work limit (specula/interrupt) counts too: its cancel flag as a cancel, its
+  /// deadline as the time budget. A process-wide stop request throws Interrupted.
   const std::atomic<bool>* cancel = nullptr;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// A table of numbers with named columns, written as CSV or JSON, and files written atomically.
+// A table of numbers with named columns, written as CSV or JSON (files: specula/io/files.h).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -25,9 +25,5 @@ struct Table {
 std::string to_csv(const Table& table, std::optional<int> decimals = std::nullopt);
 /// {meta…, "columns": [...], "rows": [{column: value}, …]}; non-finite values become null.
 std::string to_json(const Table& table, std::optional<int> decimals = std::nullopt);
-
-/// Writes `content` to a temporary file beside `path`, then renames it over `path`: readers
-/// never see a half-written file. Throws InvalidArgument ("cannot write …") on failure.
-void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 }  // namespace specula::io

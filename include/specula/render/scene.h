@@ -79,6 +79,9 @@ struct Material {
   Rgb ambient{0.03, 0.03, 0.03}; ///< ambient radiance, reflected as ambient·diffuse
 };
 
+/// The most lights a scene may have (each costs one more lobe evaluation per pixel).
+inline constexpr std::size_t kMaxLights = 64;
+
 struct Scene {
   Camera camera;
   std::vector<Sphere> spheres;
@@ -94,7 +97,7 @@ Scene default_scene(Model model);
 
 /// Throws InvalidArgument naming the first invalid part: a degenerate camera, a field of view
 /// outside (0°, 180°), a sphere radius ≤ 0, a zero light direction, a negative or non-finite
-/// colour or intensity.
+/// colour or intensity, more than kMaxLights lights.
 void validate(const Scene& scene);
 
 }  // namespace specula::render

@@ -14,7 +14,10 @@ struct Options {
   std::function<void(std::string_view)> progress = [](std::string_view) {};
 };
 
-/// Writes out_dir/index.html and the tables; throws InvalidArgument when out_dir is unusable.
+/// Writes out_dir/index.html and the tables, all at once: the files are made in a staging
+/// directory beside out_dir and swapped in when complete (io::StagedDirectory), so a failed,
+/// stopped or killed run leaves the previous report. Throws InvalidArgument when out_dir is
+/// unusable.
 void write_report(const Options& options);
 
 }  // namespace specula::report

@@ -1,0 +1,145 @@
+// The CLI against a hostile user: budgets that stop a search, option ranges that bound time and
+// memory, inputs with a size cap, outputs that never replace a special file and that no signal or
+// kill leaves half-written, and errors that are always one line.
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <sys/stat.h>
+#include <thread>
+
+#include "cli_fixture.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::IsEmpty;
+using specula::testing::Cli;
+using specula::testing::listing;
+using specula::testing::Result;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// ---- fit: every budget honoured -------------------------------------------------------------
+
+TEST_F(Cli, FitWithAFormulaSpaceSmallerThanThePopulationStopsAtItsTimeBudget) {
+  const fs::path data = work() / "d.csv";
+  write_text(data, "n,coef\n1,0.48\n2,0.66\n3,0.85\n");
+  const auto start = Clock::now();
+  const pid_t pid = start({"fit", "--data", data.string(), "--target", "coef", "--max-size", "1", "--time", "2", "-q"});
+  const Result r = finish_within(pid, std::chrono::seconds(60));
+  EXPECT_EQ(r.code, 0) << r;
+  EXPECT_THAT(r.out, HasSubstr("stopped by time"));
+  EXPECT_LT(seconds_since(start), 30);
+}
+
+TEST_F(Cli, FitOptionsBeyondTheirRangeAreUsageErrors) {
+  const fs::path data = work() / "d.csv";
+  write_text(data, "n,coef\n1,0.48\n2,0.66\n3,0.85\n");
+  const std::vector<std::string> base{"fit", "--data", data.string(), "--target", "coef", "-q", "--time", "1"};
+  const auto with = [&](std::vector<std::string> extra) {
+    auto args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  EXPECT_THAT(bad(with({"--islands", "2147483647"})).err, HasSubstr("--islands"));
+  EXPECT_THAT(bad(with({"--population", "1000000"})).err, HasSubstr("--population"));
+  EXPECT_THAT(bad(with({"--enumerate-size", "2147483647"})).err, HasSubstr("--enumerate-size"));
+  EXPECT_THAT(bad(with({"--max-size", "1000"})).err, HasSubstr("--max-size"));
+  EXPECT_THAT(bad(with({"--threads", "100000"})).err, HasSubstr("--threads"));
+  // The control: the same command inside the ranges runs.
+  EXPECT_EQ(run(with({"--islands", "2", "--population", "20", "--enumerate-size", "3"})).code, 0);
+}
+
+TEST_F(Cli, FitRefusesAnEndlessDataFile) {
+  const auto start = Clock::now();
+  EXPECT_THAT(bad({"fit", "--data", "/dev/zero", "--target", "coef", "-q"}).err, HasSubstr("larger than"));
+  EXPECT_LT(seconds_since(start), 60);
+}
+
+// ---- lists and counts with a documented range ---------------------------------------------------
+
+TEST_F(Cli, ListsLongerThanTheCommandsCapAreRefused) {
+  EXPECT_THAT(bad({"check", "--model", "log-normalized", "--n", "1:1e7"}).err, HasSubstr("--n"));
+  EXPECT_THAT(bad({"error", "--model", "log", "--n", "1:1e7"}).err, HasSubstr("--n"));
+  EXPECT_THAT(bad({"normalize", "--model", "log", "--n", "1:1e7"}).err, HasSubstr("--n"));
+  EXPECT_THAT(bad({"check", "--model", "phong", "--pairs", "100000000"}).err, HasSubstr("--pairs"));
+  // The control: a list inside the cap is computed.
+  EXPECT_EQ(run({"error", "--model", "log", "--n", "1:3"}).code, 0);
+}
+
+// ---- errors are one line ------------------------------------------------------------------------
+
+TEST_F(Cli, AnArgumentHoldingANewlineIsEscapedInTheError) {
+  const Result r = bad({"eval", "--model", "log", "--cos", "1", "--coef", "1\n2"});
+  EXPECT_THAT(r.err, HasSubstr("1\\n2"));
+  EXPECT_THAT(bad({"eval", "--model", "lo\ng", "--cos", "1"}).err, HasSubstr("lo\\ng"));
+  EXPECT_THAT(bad({"eval", "--model", "log", "--cos", "1\r\x1b[2J"}).err, HasSubstr("\\r\\x1b[2J"));
+}
+
+// ---- outputs --------------------------------------------------------------------------------------
+
+TEST_F(Cli, OutToACharacterDeviceWritesIntoIt) {
+  ok({"eval", "--model", "log", "--cos", "1", "-o", "/dev/null"});
+  struct stat info {};
+  ASSERT_EQ(::stat("/dev/null", &info), 0);
+  EXPECT_TRUE(S_ISCHR(info.st_mode));
+}
+
+TEST_F(Cli, OutToAFifoWritesIntoIt) {
+  const fs::path fifo = work() / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] { received = specula::testing::read_file(fifo); });
+  ok({"eval", "--model", "log", "--cos", "1", "-o", fifo.string()});
+  reader.join();
+  EXPECT_THAT(received, HasSubstr("cos,value\n1,"));
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST_F(Cli, OutThroughASymlinkWritesItsTargetAndKeepsTheLink) {
+  const fs::path target = work() / "target.csv", link = work() / "link.csv";
+  write_text(target, "old\n");
+  fs::create_symlink(target, link);
+  ok({"eval", "--model", "log", "--cos", "1", "-o", link.string()});
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_THAT(specula::testing::read_file(target), HasSubstr("cos,value"));
+  EXPECT_THAT(listing(work()), ElementsAre("link.csv", "target.csv"));
+}
+
+TEST_F(Cli, AnOutputNameOfTheMaximumLengthWorks) {
+  const std::string name(254, 'e');
+  ok({"eval", "--model", "log", "--cos", "1", "-o", (work() / name).string()});
+  EXPECT_THAT(listing(work()), ElementsAre(name));
+}
+
+// SIGKILL in the middle of a large write: nothing is left, under any name.
+TEST_F(Cli, AKilledEvalLeavesNoFile) {
+  const pid_t pid = start({"eval", "--model", "log", "--cos", "0:1@3000000", "-o", (work() / "e.csv").string()});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(pid, SIGKILL);
+  const Result r = finish(pid);
+  ASSERT_EQ(r.code, 128 + SIGKILL) << "the command ended before the kill; the test proves nothing";
+  EXPECT_THAT(listing(work()), IsEmpty());
+}
+
+TEST_F(Cli, SigintAndSigtermStopARenderWithTheirExitCodesAndNoFile) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const pid_t pid = start({"render", "--model", "ggx", "--size", "3000x3000", "-o", (work() / "y.exr").string()});
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, signal);
+    const auto stopped = Clock::now();
+    const Result r = finish(pid);
+    EXPECT_EQ(r.code, 128 + signal) << r;
+    EXPECT_LT(seconds_since(stopped), 5);
+    EXPECT_THAT(listing(work()), IsEmpty());
+  }
+}
+
+}  // namespace
