@@ -1,5 +1,5 @@
 # The front door. `make report` and `make test` work on a fresh Debian 12 machine as root.
-.PHONY: all deps build debug test report bench clean
+.PHONY: all deps build debug test report bench hostile clean
 
 all: build
 
@@ -28,6 +28,12 @@ bench: build
 	@build/release/bench/specula_lobe_bench
 	@build/release/bench/specula_bench
 	@build/release/bench/specula_render_bench
+
+# The hostile test (bench/hostile): the release CLI and `specula serve` on loopback against
+# malformed input, kills, signals and slow or heavy clients; bounded (about 6 minutes), exit 1 on
+# any fault. docs/robustness.md states the rules it checks.
+hostile: build
+	@python3 bench/hostile/run.py --specula build/release/specula
 
 clean:
 	rm -rf build report

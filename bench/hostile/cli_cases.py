@@ -19,6 +19,7 @@ import proc
 from tally import shown_argv
 
 SIGNAL_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
+SLOW_REFUSAL_S = 5.0  # bad input must be refused sooner than this
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -43,11 +44,10 @@ def top_level(top):
     return sorted(os.listdir(top))
 
 
-def one_line(stderr):
-    """True when stderr is exactly one line ending in \\n, with no other control character."""
-    if not stderr.endswith(b"\n") or stderr.count(b"\n") != 1:
-        return False
-    return not any(b < 0x20 or b == 0x7F for b in stderr[:-1])
+def one_line(r):
+    """True when r's stderr is exactly one line ending in \\n, with no other control character."""
+    e = r.extra
+    return e.get("stderr_lines") == 1 and e.get("stderr_ends_in_newline") and not e.get("stderr_control")
 
 
 def first_line(stderr, limit=120):
@@ -64,6 +64,8 @@ def output_names(args):
             value = args[i + 1]
         elif a.startswith("--out="):
             value = a[len("--out="):]
+        elif a.startswith("-o") and not a.startswith("-o-"):  # CLI11: -oVALUE, and -o=V is the value "=V"
+            value = a[2:]
     if value and "/" not in value and value not in (".", ".."):
         return {value}
     return set()
@@ -177,6 +179,10 @@ class Cli:
         """Counts r in g and records what went wrong; returns the top-level names left in work."""
         g.count(r.label(), r.wall, r.rss_mib)
         what = "specula " + shown_argv(r.argv[1:]).replace(self.fixture_dir + "/", "FIXTURES/")
+        if r.wall >= g.worst_wall:
+            g.note = f"slowest: {what[:110]} ({r.wall:.1f} s)"
+        if r.code == 2 and r.wall > SLOW_REFUSAL_S:
+            g.fault("slow", f"{what}: refused (exit 2) only after {r.wall:.1f} s")
         if r.hung:
             g.fault("hang", f"{what}: still running after {cap:g} s (killed)")
         elif r.signal is not None and r.signal != sent:
@@ -184,9 +190,10 @@ class Cli:
         elif r.code is not None and r.code not in expect:
             kind = "crash" if r.code >= 3 else "wrong"
             g.fault(kind, f"{what}: exit {r.code}, expected {'/'.join(map(str, expect))}; {first_line(r.stderr)}")
-        if r.code == 2 and not one_line(r.stderr):
-            lines = r.stderr.count(b"\n")
-            g.fault("lines", f"{what}: exit 2 with {lines} stderr lines (or raw control characters): "
+        if r.code == 2 and not one_line(r):
+            e = r.extra
+            g.fault("lines", f"{what}: exit 2 with {e.get('stderr_lines')} stderr lines"
+                             f"{' and raw control characters' if e.get('stderr_control') else ''}: "
                              f"{r.stderr[:160]!r}")
         left = top_level(work)
         allowed = set(outputs) if r.code in ok_codes else set()
@@ -508,18 +515,19 @@ def interrupted_run(cli, g, job, sig, after):
 
 def group_kills(cli):
     gk = cli.summary.group("cli: SIGKILL mid-write")
-    gs = cli.summary.group("cli: SIGINT/SIGTERM mid-write")
     kills = 2 if cli.quick else 10
-    signals_each = 1 if cli.quick else 3
-    for job in long_writes():
+    jobs = long_writes()
+    for job in jobs:
         job.reference(cli, gk)
         if job.digest is None:
-            gk.fault("wrong", f"specula {shown_argv(job.args)}: the uninterrupted run failed; kills skipped")
+            gk.fault("wrong", f"specula {shown_argv(job.args)}: the uninterrupted run failed; its kills skipped")
             continue
         for _ in range(kills):
             interrupted_run(cli, gk, job, signal.SIGKILL, cli.rng.uniform(0.02, 1.1 * job.seconds))
+    gs = cli.summary.group("cli: SIGINT/SIGTERM mid-write")
+    for job in (j for j in jobs if j.digest is not None):
         for sig in (signal.SIGINT, signal.SIGTERM):
-            for _ in range(signals_each):
+            for _ in range(1 if cli.quick else 3):
                 interrupted_run(cli, gs, job, sig, cli.rng.uniform(0.05, 1.1 * job.seconds))
 
 
@@ -537,9 +545,14 @@ def group_report(cli):
     args = ["report", "--quick", "--out", "R"]
     first = cli.run(args, 300, work)
     cli.judge(g, first, work, 300, expect=(0,), outputs={"R"})
+    if first.code != 0 and not os.path.exists(os.path.join(work, "R")):  # a new DIR fails: try an existing one
+        os.mkdir(os.path.join(work, "R"))
+        first = cli.run(args, 300, work)
+        first.argv = first.argv + ["[into an existing, empty R]"]
+        cli.judge(g, first, work, 300, expect=(0,), outputs={"R"})
     files, index = report_state(os.path.join(work, "R"))
     if first.code != 0 or index is None:
-        g.fault("wrong", "specula report --quick --out R: the first run wrote no complete report; kill skipped")
+        g.fault("wrong", "specula report --quick --out R: no complete first report; the kill is skipped")
         rmtree(work)
         return
     after = cli.rng.uniform(0.3, 0.7) * first.wall
@@ -548,8 +561,8 @@ def group_report(cli):
     staging = [n for n in top_level(work) if re.fullmatch(r"\.R\.specula-\d+", n)]
     cli.judge(g, second, work, 300, expect=(0,), outputs={"R", *staging}, ok_codes=(0, None), sent=signal.SIGKILL)
     what = f"specula report --quick --out R with SIGKILL at {after:.1f} s"
-    if second.code == 0:
-        g.note = "second run finished before the kill"
+    g.note = f"first run {first.wall:.1f} s; killed at {after:.1f} s" + (
+        ", but it had finished" if second.code == 0 else "")
     files2, index2 = report_state(os.path.join(work, "R"))
     if files2 != files:
         g.fault("wrong", f"{what}: R's file list changed ({len(files)} -> {len(files2)} entries; "
@@ -557,5 +570,5 @@ def group_report(cli):
     if index2 != index:
         g.fault("wrong", f"{what}: R/index.html is not the first report's")
     if staging:
-        g.note = f"the kill left {staging[0]!r}; documented: the next run removes it"
+        g.note += f"; the kill left {staging[0]!r} (documented: the next run removes it)"
     rmtree(work)

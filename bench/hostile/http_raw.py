@@ -22,17 +22,17 @@ class Resp:
     error: str = None
 
 
-def request_bytes(method, path, headers=(), body=b"", close=True):
+def request_bytes(method, path, headers=(), body=None, close=True):
     """A request as bytes; method/path may be str (UTF-8, surrogates as raw bytes) or bytes."""
     def raw(x):
         return x if isinstance(x, bytes) else x.encode("utf-8", "surrogateescape")
     lines = [raw(method) + b" " + raw(path) + b" HTTP/1.1", b"Host: 127.0.0.1"]
     lines += [raw(h) for h in headers]
-    if body:
+    if body is not None:
         lines.append(b"Content-Length: %d" % len(body))
     if close:
         lines.append(b"Connection: close")
-    return b"\r\n".join(lines) + b"\r\n\r\n" + body
+    return b"\r\n".join(lines) + b"\r\n\r\n" + (body or b"")
 
 
 def _parse_head(head):

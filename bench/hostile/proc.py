@@ -4,6 +4,7 @@ Every child runs in its own session, so it and anything it starts can be killed 
 kill_leftovers() (registered at exit by run.py) SIGKILLs whatever is still alive.
 """
 import os
+import re
 import signal
 import subprocess
 import time
@@ -13,6 +14,7 @@ _LIVE = set()  # pids (= process-group ids) of children not yet reaped
 
 STDERR_KEEP = 64 * 1024  # bytes of stderr kept per run
 STDOUT_KEEP = 4 * 1024
+STDERR_SCAN = 64 << 20  # bytes of stderr scanned for newlines and control characters
 
 
 @dataclass
@@ -98,7 +100,13 @@ def finish(p, files, run, status, usage, start):
     _decode_status(run, status)
     out, err = files
     run.stdout, run.stdout_size = _read_head(out, STDOUT_KEEP)
-    run.stderr, _ = _read_head(err, STDERR_KEEP)
+    run.stderr, size = _read_head(err, STDERR_KEEP)
+    err.seek(0)
+    whole = err.read(STDERR_SCAN)
+    run.extra["stderr_lines"] = whole.count(b"\n")
+    run.extra["stderr_size"] = size
+    run.extra["stderr_control"] = re.search(rb"[\x00-\x09\x0b-\x1f\x7f]", whole) is not None
+    run.extra["stderr_ends_in_newline"] = whole.endswith(b"\n")
     out.close()
     err.close()
     return run

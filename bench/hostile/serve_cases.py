@@ -89,6 +89,8 @@ class Monitor(threading.Thread):
             phase = self.phase
             r = http_raw.get(self.addr, "/api/models", timeout=15.0)
             ok = r.status == 200 and _json_list(r.body)
+            if self.phase == "shutdown":  # the server may have stopped under this request
+                phase = "shutdown"
             self.samples.append((phase, r.wall, ok, r.error or (None if ok else f"status {r.status}")))
             self.done.wait(max(0.0, 0.25 - r.wall))
 
@@ -156,7 +158,7 @@ def group_paths(ctx, g, count):
     paths = [p.encode() for p in TRAVERSALS] + ODD_PATHS + [random_path(ctx.rng) for _ in range(count)]
     for path in paths:
         raw = http_raw.request_bytes(b"GET", path)
-        r = http_raw.exchange(ctx.addr, raw, half_close=True)
+        r = http_raw.exchange(ctx.addr, raw)
         label = raw_label(raw)
         wellformed = 0 < len(path) < 8000 and all(0x20 < b < 0x7F for b in path)
         judge(g, label, r, must_answer=wellformed)
@@ -167,7 +169,8 @@ def group_paths(ctx, g, count):
 # ----------------------------------------------------------------------------- methods and framing
 
 METHODS = ["FOO", "PROPFIND", "TRACE", "CONNECT", "HEAD", "PUT", "PATCH", "OPTIONS", "DELETE", "get", "POST",
-           "A" * 1000, "GE\x01T", "\udcff", "M-SEARCH", "PRI"]
+           "A" * 1000, "GE\x01T", "\udcff", "M-SEARCH"]
+BODY_METHODS = ("POST", "PUT", "PATCH")  # sent with Content-Length: 0 (see NO_LENGTH for without)
 METHOD_PATHS = ["/", "/api/models", "/api/eval", "/api/fit/1", "/app.js"]
 FRAMING = [
     b"\r\n\r\n", b"GET\r\n\r\n", b"GET /\r\n\r\n", b"GET / HTTP/9.9\r\n\r\n", b"GET / HTTP/1.1\r\n\r\n",
@@ -195,14 +198,37 @@ FRAMING = [
 def group_methods(ctx, g):
     for method in METHODS:
         for path in METHOD_PATHS:
-            raw = http_raw.request_bytes(method, path)
+            raw = http_raw.request_bytes(method, path, body=b"" if method in BODY_METHODS else None)
             head = method == "HEAD"
-            r = http_raw.exchange(ctx.addr, raw, half_close=True, head_only=head)
+            r = http_raw.exchange(ctx.addr, raw, head_only=head)
             wellformed = method.isalpha() and method.isupper() and len(method) < 100
             judge(g, raw_label(raw), r, must_answer=wellformed and method != "CONNECT", head=head)
-    for raw in FRAMING:
+    for raw in FRAMING:  # many are incomplete: half-close, so that the server sees the end at once
         r = http_raw.exchange(ctx.addr, raw, half_close=True, total=15.0)
         judge(g, raw_label(raw) or "(empty)", r, must_answer=False)
+    no_length(ctx, g)
+
+
+NO_LENGTH = [http_raw.request_bytes("POST", "/api/eval"), http_raw.request_bytes("PUT", "/")]
+
+
+def no_length(ctx, g):
+    """A POST or PUT with neither Content-Length nor chunking has no body (RFC 9112 6.3): answer at once."""
+    results = [None] * len(NO_LENGTH)
+
+    def send(i):
+        results[i] = http_raw.exchange(ctx.addr, NO_LENGTH[i], timeout=15.0, total=15.0)
+    threads = [threading.Thread(target=send, args=(i,), daemon=True) for i in range(len(NO_LENGTH))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(20)
+    for raw, r in zip(NO_LENGTH, results):
+        label = raw_label(raw) + " without Content-Length"
+        r = r or http_raw.Resp(error="timed out")
+        judge(g, label, r)
+        if r.wall > 2.0:
+            g.fault("slow", f"{label}: answered {r.status} only after {r.wall:.1f} s (it waited for a body)")
 
 
 # ----------------------------------------------------------------------------- JSON bodies
@@ -322,6 +348,7 @@ def group_content_length(ctx, g):
              b"POST /api/fit HTTP/1.1\r\nHost: x\r\nContent-Length: 1000000000000\r\n\r\n",
              b"GET /api/models HTTP/1.1\r\nHost: x\r\nContent-Length: 1000000000000\r\n\r\n",
              b"POST /api/eval HTTP/1.1\r\nHost: x\r\nContent-Length: 65537\r\n\r\n{"]
+    expects = [(413,), (413,), (200, 400, 413), (413,)]
     results = [None] * len(heads)
     threads = [threading.Thread(target=content_length_case, args=(ctx, g, raw, results, i), daemon=True)
                for i, raw in enumerate(heads)]
@@ -329,10 +356,13 @@ def group_content_length(ctx, g):
         t.start()
     for t in threads:
         t.join(20)
-    for raw, r in zip(heads, results):
+    for raw, r, expect in zip(heads, results, expects):
         body = " (no body)" if raw.endswith(b"\r\n\r\n") else " (1 byte of body)"
         label = raw_label(raw) + " + " + shown(raw.split(b"\r\n")[-3], 40) + body
-        judge(g, label, r or http_raw.Resp(error="timed out"), expect=(413,))
+        r = r or http_raw.Resp(error="timed out")
+        judge(g, label, r, expect=expect)
+        if r.status is not None and r.wall > 2.0:
+            g.fault("slow", f"{label}: answered {r.status} only after {r.wall:.1f} s (it waited for the body)")
 
 
 # ----------------------------------------------------------------------------- slow clients, heavy requests
@@ -379,16 +409,22 @@ def heavy_request(ctx, results, i, timeout):
     results[i] = http_raw.post_json(ctx.addr, "/api/check", HEAVY, timeout=timeout)
 
 
-def group_heavy(ctx, g, count, timeout):
-    results = [None] * count
+def start_heavy(ctx, results, timeout):
     threads = [threading.Thread(target=heavy_request, args=(ctx, results, i, timeout), daemon=True)
-               for i in range(count)]
+               for i in range(len(results))]
     for t in threads:
         t.start()
-    for t in threads:
-        t.join(timeout + 10)
+    return threads
+
+
+def group_heavy(ctx, g, count, timeout):
+    """`count` heavy checks at once; those not answered within `timeout` are hangs (left running)."""
+    results = [None] * count
+    for t in start_heavy(ctx, results, timeout):
+        t.join(timeout + 5)
     for r in results:
-        judge(g, f"POST /api/check {json.dumps(HEAVY)} (x{count} at once)", r or http_raw.Resp(error="timed out"))
+        judge(g, f"POST /api/check {json.dumps(HEAVY)} (x{count} at once)",
+              r or http_raw.Resp(error=f"timed out after {timeout} s", wall=timeout))
 
 
 # ----------------------------------------------------------------------------- fit jobs
@@ -449,11 +485,13 @@ def group_fit(ctx, g):
 
 # ----------------------------------------------------------------------------- shutdown
 
+SHUTDOWN_FIT = {"model": "log", "n": "paper50", "time": 60, "generations": 100000}
+
+
 def group_shutdown(ctx, g, summary):
+    """SIGTERM with a heavy check and a fit in flight (the fit was started before the heavy burst)."""
     results = [None]
-    heavy = threading.Thread(target=heavy_request, args=(ctx, results, 0, 30.0), daemon=True)
-    heavy.start()
-    start_fit(ctx, g, {"model": "log", "n": "paper50", "time": 60})
+    heavy = start_heavy(ctx, results, 30.0)[0]
     time.sleep(0.5)
     ctx.monitor.phase = "shutdown"  # its failures from now on are expected
     ctx.monitor.done.set()
@@ -528,8 +566,8 @@ def run_all(specula, scratch, summary, seed, quick):
         ("srv: Range x1500", lambda g: group_ranges(ctx, g)),
         ("srv: Content-Length 1e12", lambda g: group_content_length(ctx, g)),
         ("srv: 12 slow-drip clients", lambda g: group_slow_drip(ctx, g, 5 if quick else 10)),
-        (f"srv: {heavy} heavy checks at once", lambda g: group_heavy(ctx, g, heavy, 60 if quick else 150)),
-        ("srv: fit jobs", lambda g: group_fit(ctx, g)),
+        ("srv: fit jobs", lambda g: (group_fit(ctx, g), start_fit(ctx, g, SHUTDOWN_FIT))),  # the last one runs on
+        (f"srv: {heavy} heavy checks at once", lambda g: group_heavy(ctx, g, heavy, 15 if quick else 30)),
     ]
     try:
         for name, body in groups:

@@ -57,6 +57,8 @@ class Group:
         self.worst_rss = 0.0
         self.faults = []  # (kind, text)
         self.note = ""
+        self.started = time.monotonic()
+        self.took = 0.0
 
     def count(self, label, wall=0.0, rss=0.0):
         self.runs += 1
@@ -86,9 +88,15 @@ class Summary:
 
     def group(self, name):
         print(f"[{time.monotonic() - self.started:5.0f} s] {name}", file=sys.stderr, flush=True)
+        self.close_group()
         g = Group(name)
         self.groups.append(g)
         return g
+
+    def close_group(self):
+        """Ends the timing of the latest group."""
+        if self.groups and self.groups[-1].took == 0.0:
+            self.groups[-1].took = time.monotonic() - self.groups[-1].started
 
     def faults(self):
         return [(g.name, kind, text) for g in self.groups for kind, text in g.faults]
@@ -98,9 +106,10 @@ class Summary:
         return {kind: counts.get(kind, 0) for kind in KINDS}
 
     def table(self):
-        head = ("group", "runs", "exit codes / HTTP statuses", "worst s", "worst MiB", "faults")
+        head = ("group", "runs", "exit codes / HTTP statuses", "worst s", "worst MiB", "faults", "took s")
         rows = [(g.name, str(g.runs), g.codes_text(),
-                 f"{g.worst_wall:.2f}", f"{g.worst_rss:.0f}" if g.worst_rss else "-", str(len(g.faults)))
+                 f"{g.worst_wall:.2f}", f"{g.worst_rss:.0f}" if g.worst_rss else "-", str(len(g.faults)),
+                 f"{g.took:.0f}")
                 for g in self.groups]
         widths = [max(len(r[i]) for r in [head] + rows) for i in range(len(head))]
         widths[2] = min(widths[2], 60)
@@ -149,6 +158,7 @@ class Summary:
         return json.dumps({
             "groups": [{"name": g.name, "note": g.note, "runs": g.runs, "codes": dict(g.codes),
                         "worst_wall_s": round(g.worst_wall, 3), "worst_rss_mib": round(g.worst_rss, 1),
+                        "took_s": round(g.took, 1),
                         "faults": len(g.faults)} for g in self.groups],
             "totals": self.totals(),
             "worst_models_latency_s": round(lat[0], 4) if lat else None,

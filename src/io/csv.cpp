@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <fmt/format.h>
+#include <unordered_map>
 
 #include "specula/error.h"
 #include "specula/io/files.h"
@@ -102,13 +103,12 @@ std::vector<std::string> split_fields(std::string_view line, const Place& at) {
 std::vector<std::string> read_header(const Line& line, std::string_view source) {
   const Place at{source, line.number, nullptr};
   auto names = split_fields(line.text, at);
+  std::unordered_map<std::string_view, std::size_t> first_column;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (names[i].empty()) at.fail(i, "empty column name");
-    const auto earlier = names.begin() + static_cast<std::ptrdiff_t>(i);
-    const auto first = std::find(names.begin(), earlier, names[i]);
-    if (first != earlier)
-      at.fail(i, fmt::format("duplicate column name \"{}\" (also column {})", names[i],
-                             first - names.begin() + 1));
+    const auto [first, inserted] = first_column.try_emplace(names[i], i);
+    if (!inserted)
+      at.fail(i, fmt::format("duplicate column name \"{}\" (also column {})", names[i], first->second + 1));
   }
   return names;
 }

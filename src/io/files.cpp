@@ -185,16 +185,18 @@ StagedDirectory::StagedDirectory(const fs::path& target) {
   if (target.empty()) cannot("write", target, "empty directory name");
   std::error_code ec;
   target_ = fs::absolute(target, ec);
-  if (fs::is_symlink(target_, ec)) target_ = fs::canonical(target_, ec);
+  struct stat info {};
+  if (!ec && ::lstat(target_.c_str(), &info) == 0) {
+    if (S_ISLNK(info.st_mode)) target_ = fs::canonical(target_, ec);
+    if (!ec && !fs::is_directory(target_, ec)) cannot("write", target, "it is not a directory");
+  }
   if (ec) cannot("write", target, ec.message());
-  const auto status = fs::status(target_, ec);
-  if (fs::exists(status) && !fs::is_directory(status)) cannot("write", target, "it is not a directory");
-  fs::create_directories(target_.parent_path(), ec);
-  if (ec) cannot("write", target, ec.message());
+  if (!fs::is_directory(target_.parent_path()) && !fs::create_directories(target_.parent_path(), ec))
+    cannot("write", target, ec.message());
   remove_stale_staging(target_);
   staging_ = target_.parent_path() / fmt::format("{}{}", staging_prefix(target_), ::getpid());
   fs::remove_all(staging_, ec);
-  if (!fs::create_directory(staging_, ec) || ec) cannot("write", target, ec ? ec.message() : "cannot create a staging directory");
+  if (::mkdir(staging_.c_str(), 0777) != 0) cannot("write", target, std::strerror(errno));
 }
 
 StagedDirectory::~StagedDirectory() {

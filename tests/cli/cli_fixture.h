@@ -33,7 +33,7 @@ namespace specula::testing {
 namespace fs = std::filesystem;
 using ::testing::IsEmpty;
 
-std::set<std::string> listing(const fs::path& dir) {
+inline std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
   return names;
@@ -45,7 +45,7 @@ struct Result {
   std::string err;
 };
 
-std::ostream& operator<<(std::ostream& os, const Result& r) {
+inline std::ostream& operator<<(std::ostream& os, const Result& r) {
   return os << "exit " << r.code << "\n--- stdout:\n" << r.out << "--- stderr:\n" << r.err;
 }
 

@@ -31,12 +31,12 @@ void write_text(const fs::path& path, const std::string& text) { std::ofstream(p
 TEST_F(Cli, FitWithAFormulaSpaceSmallerThanThePopulationStopsAtItsTimeBudget) {
   const fs::path data = work() / "d.csv";
   write_text(data, "n,coef\n1,0.48\n2,0.66\n3,0.85\n");
-  const auto start = Clock::now();
+  const auto began = Clock::now();
   const pid_t pid = start({"fit", "--data", data.string(), "--target", "coef", "--max-size", "1", "--time", "2", "-q"});
   const Result r = finish_within(pid, std::chrono::seconds(60));
   EXPECT_EQ(r.code, 0) << r;
   EXPECT_THAT(r.out, HasSubstr("stopped by time"));
-  EXPECT_LT(seconds_since(start), 30);
+  EXPECT_LT(seconds_since(began), 30);
 }
 
 TEST_F(Cli, FitOptionsBeyondTheirRangeAreUsageErrors) {
@@ -58,9 +58,9 @@ TEST_F(Cli, FitOptionsBeyondTheirRangeAreUsageErrors) {
 }
 
 TEST_F(Cli, FitRefusesAnEndlessDataFile) {
-  const auto start = Clock::now();
+  const auto began = Clock::now();
   EXPECT_THAT(bad({"fit", "--data", "/dev/zero", "--target", "coef", "-q"}).err, HasSubstr("larger than"));
-  EXPECT_LT(seconds_since(start), 60);
+  EXPECT_LT(seconds_since(began), 60);
 }
 
 // ---- lists and counts with a documented range ---------------------------------------------------
