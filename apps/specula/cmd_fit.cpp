@@ -187,9 +187,8 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--seed", o->search.seed, "Seed of the search and of the random split")->capture_default_str();
   cmd->add_option("--time", o->search.time_limit_s, "Time budget in seconds, (0, 1e6]; Ctrl-C stops at once")
       ->capture_default_str()->check(CLI::Range(1e-9, fit::OptionRanges::time_s));
-  cmd->add_option("--generations", o->generations, "Generation budget (per island), ≥ 0")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--evaluations", o->evaluations, "Budget in formulas fitted, ≥ 0")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--generations", o->generations, "Generation budget (per island), ≥ 0");
+  cmd->add_option("--evaluations", o->evaluations, "Budget in formulas fitted, ≥ 0");
   cmd->add_option("--target-error", o->target_error, "Stop once a formula's train error is this low (R² this high)");
   cmd->add_option("--threads", o->search.threads, "Threads, [0, 1024]; 0 = all cores (the result does not depend on it)")
       ->capture_default_str()->check(CLI::Range(0, fit::OptionRanges::threads));

@@ -672,7 +672,7 @@ TEST_F(CliFit, BadOptionsAreOneLineNamingTheProblem) {
   EXPECT_THAT(bad(fit_args(good, {"--ops", "+,tan"})).err, HasSubstr("tan"));
   EXPECT_THAT(bad(fit_args(good, {"--test-fraction", "1.5"})).err, HasSubstr("test fraction"));
   EXPECT_THAT(bad(fit_args(good, {"--generations", "-1"})).err, HasSubstr("budgets"));
-  EXPECT_THAT(bad(fit_args(good, {"--enumerate-size", "-2"})).err, HasSubstr("enumeration"));
+  EXPECT_THAT(bad(fit_args(good, {"--enumerate-size", "-2"})).err, HasSubstr("--enumerate-size"));
   const std::string zero = data_file("zero.csv", "x,y\n1,0\n2,1\n3,2\n");
   EXPECT_THAT(bad(fit_args(zero, {"--metric", "mean-relative"})).err, HasSubstr("row 1 is 0"));
 }
