@@ -220,6 +220,7 @@ TEST(ServeFit, ACancelledJobFreesItsPlaceAtOnceAndTheServerStillStops) {
   const int port = server->port();
   const std::int64_t first = start(port, tiny_space());
   ASSERT_GT(first, 0);
+  std::this_thread::sleep_for(std::chrono::seconds(1));  // well into its search (a cancel at once came before it looped)
   EXPECT_EQ(del(port, fmt::format("/api/fit/{}", first)).status, 200);
   // Its place is free, whether or not its search has noticed the cancel yet.
   const json endless{{"model", "log"}, {"generations", 100000}, {"time", 60}};

@@ -73,7 +73,7 @@ TEST(ServeRanges, ManyOverlappingRangesGetTheResourceOnce) {
     ASSERT_TRUE(c.send(with_ranges(path, ranges)));
     const auto r = c.read();
     EXPECT_EQ(r.status, 200) << path << "\n" << r.head;
-    EXPECT_EQ(r.body, whole) << path;  // the whole resource, once
+    EXPECT_TRUE(r.body == whole) << path << ": " << r.body.size() << " bytes, not the resource's " << whole.size();
     EXPECT_LE(r.bytes, whole.size() + 1024) << path << ": " << r.bytes << " bytes for a resource of " << whole.size();
     EXPECT_EQ(r.header("Content-Range"), "") << path;
     EXPECT_EQ(r.header("Accept-Ranges"), "none") << path;
@@ -83,7 +83,7 @@ TEST(ServeRanges, ManyOverlappingRangesGetTheResourceOnce) {
   ASSERT_TRUE(one.send(with_ranges("/app.js", "bytes=0-9")));
   const auto r = one.read();
   EXPECT_EQ(r.status, 200);
-  EXPECT_EQ(r.body, std::string(app->bytes));
+  EXPECT_TRUE(r.body == app->bytes) << r.body.size() << " bytes";
 }
 
 TEST(ServeRanges, AMalformedRangeIs416WithAJsonErrorOfItsOwnSize) {
@@ -303,12 +303,15 @@ TEST(ServeSlowClients, DrippingConnectionsDoNotHoldTheServer) {
   std::vector<std::unique_ptr<RawConnection>> drips;
   for (int i = 0; i < kDrips; ++i) drips.push_back(std::make_unique<RawConnection>(server.port()));
   const std::string request = "GET /api/models HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Drip: " + std::string(200, 'a');
-  std::thread dripper([&] {
+  struct Dripper {
+    std::thread thread;
+    ~Dripper() { thread.join(); }
+  } dripper{std::thread([&] {
     for (std::size_t i = 0; i < 12; ++i) {
       for (auto& d : drips) d->send(std::string(1, request[i]));
       std::this_thread::sleep_for(200ms);
     }
-  });
+  })};
   std::this_thread::sleep_for(500ms);
   double slowest = 0;
   for (int i = 0; i < 5; ++i) {
@@ -332,7 +335,6 @@ TEST(ServeSlowClients, DrippingConnectionsDoNotHoldTheServer) {
     if (r.status != 408) std::cout << "drip: " << r.status << " after " << seconds_since(start) << " s: " << r.head << r.body << "\n";
     EXPECT_TRUE(d->closed_within(2s));
   }
-  dripper.join();
   EXPECT_EQ(timeouts, kDrips);
 }
 
