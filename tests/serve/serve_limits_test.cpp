@@ -170,7 +170,7 @@ TEST(ServeDeadline, ARequestPastItsTimeCapIs503AndTheServerAnswersOn) {
 
 TEST(ServeDeadline, EveryComputedEndpointStopsAtTheCap) {
   Limits limits;
-  limits.request_seconds = 0.5;  // short, so that each endpoint's heaviest request is well past it
+  limits.request_seconds = 0.2;  // short, so that each endpoint's heaviest request is well past it (≥ 1 s here)
   TestServer server(limits);
   const std::pair<const char*, const char*> heavy[] = {
       {"/api/check", kHeavyCheck},
@@ -188,7 +188,7 @@ TEST(ServeDeadline, EveryComputedEndpointStopsAtTheCap) {
     std::cout << "[ measured ] " << path << " " << std::string(body).substr(0, 40) << "… → " << a.status << " in " << took << " s " << a.body.substr(0, 120) << "\n";
     if (a.status == 400) continue;  // beyond a count limit already: refused before any work
     EXPECT_EQ(a.status, 503) << path << " " << body << " → " << a.body;
-    EXPECT_LT(took, 8) << path << " " << body;
+    EXPECT_LT(took, 5) << path << " " << body;
   }
 }
 
