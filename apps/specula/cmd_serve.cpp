@@ -1,5 +1,6 @@
 // specula serve: the library's JSON API and the interactive page over HTTP (src/serve/).
 #include <fmt/format.h>
+#include <cstdlib>
 #include <iostream>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -37,8 +38,7 @@ void open_in_browser(const std::string& url) {
     std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
 }
 
-void serve(const ServeOptions& o) {
-  serve::Server server;
+void run(serve::Server& server, const ServeOptions& o) {
   const int port = server.bind(o.host, o.port);
   if (!serve::is_loopback(o.host))
     std::cerr << fmt::format("specula serve: warning: listening on {}, which other machines may reach; the API "
@@ -51,6 +51,20 @@ void serve(const ServeOptions& o) {
   server.run();
   done = true;
   watcher.join();
+}
+
+void serve(const ServeOptions& o) {
+  {
+    serve::Server server;
+    run(server, o);
+  }  // the server's destructor joins its fit jobs, waiting Limits::stop_seconds at most
+  if (const std::size_t left = serve::abandoned_fit_threads()) {
+    // A search that ignores its cancel flag and work limit still runs: it must not hold the
+    // exit, and static destructors must not run under it.
+    std::cerr << fmt::format("specula serve: {} fit job(s) did not stop; exiting without them\n", left);
+    std::cout.flush();
+    std::_Exit(0);
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "../numeric/piecewise.h"
 #include "specula/analysis/parallel.h"
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {
 namespace {
@@ -80,6 +81,7 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
     return kappa >= 1 ? 0.0 : (kappa <= -1 ? kPi : std::acos(kappa));
   };
   auto outer = [&](double theta_h) {
+    check_interrupt();  // per outer node: each is an inner adaptive integral over φ_h
     const double ch = std::cos(theta_h), sh = std::sin(theta_h);
     const double end = phi_max(ch, sh);
     auto inner = [&](double phi) {
@@ -136,6 +138,7 @@ double angular_width(const Model& model) {
 }
 
 Albedo albedo(const Model& model, double theta_i) {
+  check_interrupt();
   if (!(theta_i >= 0 && theta_i < kPi / 2))
     throw InvalidArgument(fmt::format("incidence angle {} rad is outside [0, π/2)", theta_i));
   if (model.is_lobe() && model.form() == Form::rv)

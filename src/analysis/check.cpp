@@ -10,12 +10,14 @@
 #include "../numeric/golden_section.h"
 #include "specula/analysis/albedo.h"
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kRefineTolerance = 1e-4;  // degrees
+constexpr std::size_t kPairsPerCheck = 1024;  // reciprocity pairs between interrupt checks
 
 /// Uniform on the upper hemisphere, including grazing directions.
 Vec3 random_direction(std::mt19937_64& rng) {
@@ -45,7 +47,10 @@ MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<doub
   // An interior maximum is refined; one at the grid's last point (89.9°) is the supremum's
   // approach to grazing, reported there. ρ is even in θ_i, so at 0° it is stationary: a maximum
   // there unless ρ rises within the first step.
-  auto rho_at = [&](double deg) { return albedo(model, deg * kDegree).value; };
+  auto rho_at = [&](double deg) {
+    check_interrupt();  // each probe of the refinement is a whole albedo integral
+    return albedo(model, deg * kDegree).value;
+  };
   const bool stationary_at_normal = best == 0 && rho_at(step_deg / 16) <= rho[0];
   if (best + 1 < degrees.size() && !stationary_at_normal) {
     const double lo = degrees[best == 0 ? 0 : best - 1], hi = degrees[best + 1];
@@ -66,6 +71,7 @@ CheckResult check(const Model& model, const CheckOptions& options) {
   std::mt19937_64 rng(options.seed);
   r.min_value = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < options.reciprocity_pairs; ++i) {
+    if (i % kPairsPerCheck == 0) check_interrupt();
     const Vec3 l = random_direction(rng), v = random_direction(rng);
     const double f_lv = model(n, l, v), f_vl = model(n, v, l);
     r.min_value = std::min({r.min_value, f_lv, f_vl});

@@ -8,6 +8,7 @@
 
 #include "../numeric/golden_section.h"
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {
 namespace {
@@ -23,6 +24,7 @@ using numeric::Maximum;
 /// golden-section search in the bracket of its neighbours.
 template <class G>
 Maximum maximize(const G& g, const std::vector<double>& grid) {
+  check_interrupt();  // once per sweep of a grid (a few thousand cheap lobe evaluations)
   Maximum best;
   std::size_t best_index = 0;
   for (std::size_t i = 0; i < grid.size(); ++i) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "specula/analysis/albedo.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/simd/brdf.h"
 
 namespace specula::analysis {
@@ -67,6 +68,7 @@ class SampleBlock {
 
   /// Evaluates the pending samples and adds value and value² to the sums.
   void flush() {
+    check_interrupt();  // once per block of kSize samples
     const std::size_t count = pdf_.size();
     const auto first = [count](const std::vector<double>& column) { return std::span<const double>(column.data(), count); };
     f_.resize(count);
@@ -111,6 +113,7 @@ MonteCarloEstimate albedo_monte_carlo(const Model& model, double theta_i, std::s
     return vh > 0 ? lobe.pdf(h.z) / (4 * vh) : 0.0;
   };
 
+  check_interrupt();
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   SampleBlock block(model, l);

@@ -3,10 +3,12 @@
 #include <string>
 
 #include "specula/error.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::normalize {
 
 double coefficient(const lobes::Lobe& lobe, Form form, Method method) {
+  check_interrupt();
   if (method == Method::quadrature) return quadrature(lobe, form);
   if (const auto exact = closed_form(lobe, form)) return *exact;
   if (method == Method::exact)

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "../numeric/piecewise.h"
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::normalize {
 namespace {
@@ -27,6 +28,7 @@ Integral integrate(const L& lobe, Form form) {
 }  // namespace
 
 Integral normal_incidence_albedo(const lobes::Lobe& lobe, Form form) {
+  check_interrupt();
   return std::visit([form](const auto& l) { return integrate(l, form); }, lobe);
 }
 

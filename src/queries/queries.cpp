@@ -12,6 +12,7 @@
 #include "specula/brdf/directions.h"
 #include "specula/error.h"
 #include "specula/gl/glsl.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"
 #include "specula/normalize/normalize.h"
 
@@ -164,6 +165,7 @@ io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
   if (both) table.columns.insert(table.columns.end(), {"coef_quadrature", "rel_diff"});
   if (!q.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
   for (const double n : ns) {
+    check_interrupt();
     const Model m = lobe_model_at("model", "normalize", q.model, q.params, n, q.form, spelling);
     if (table.meta.size() == 3) table.meta.emplace_back("form", to_string(m.form()));
     const double coef = strict ? analysis::strict_coefficient(m, q.step)
@@ -236,6 +238,7 @@ std::vector<CheckCase> check_cases(const CheckQuery& q, Spelling spelling) {
     fail("sweep", fmt::format("{} is swept; do not also give it with {}", q.sweep, spelled("params", spelling)));
   std::vector<CheckCase> cases;
   for (const double v : q.values) {
+    check_interrupt();
     ModelSpec at = q.model;
     at.params[q.sweep] = v;
     const Model m = for_field("sweep", [&] { return make(at, spelling); });

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -11,7 +13,9 @@
 #include "specula/error.h"
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/normalize/normalize.h"
+#include "specula/serve/server.h"
 
 namespace specula::serve {
 
@@ -24,8 +28,10 @@ struct FitJobs::Job {
   fit::Options options;
   std::atomic<bool> cancel{false};
   std::atomic<bool> finished{false};
+  std::chrono::steady_clock::time_point deadline;  ///< of its work limit: time budget + grace
 
-  mutable std::mutex mutex;  // guards what follows
+  mutable std::mutex mutex;  // guards what follows and signals `ended`
+  std::condition_variable ended;  ///< notified once `finished` is set
   std::string state = "running";  ///< running | done | cancelled | failed
   std::string error;
   fit::Progress progress;
@@ -38,6 +44,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 using Job = FitJobs::Job;
+
+std::atomic<std::size_t> abandoned{0};
 
 [[noreturn]] void fail(std::string_view field, const std::string& message) {
   throw InvalidField(std::string(field), message);
@@ -170,7 +178,7 @@ std::string status_json(const Job& job) {
   out["chosen"] = job.chosen ? Json(*job.chosen) : Json();
   out["stopped_by"] = job.stopped_by.empty() ? Json() : Json(job.stopped_by);
   if (!job.error.empty()) out["error"] = job.error;
-  return out.dump(2) + "\n";
+  return out.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";  // an error may echo anything
 }
 
 void run_job(Job& job) {
@@ -189,20 +197,48 @@ void run_job(Job& job) {
     job.progress.evaluations = result.evaluations;
     job.progress.generations = result.generations;
     job.state = result.stopped_by == "cancelled" ? "cancelled" : "done";
+  } catch (const Interrupted& e) {  // a library check of the job's work limit (or a signal)
+    const std::lock_guard lock(job.mutex);
+    if (e.reason() == Interrupted::Reason::deadline) {
+      job.state = "failed";
+      job.error = fmt::format("the search ran past its time budget and was stopped");
+    } else {
+      job.state = "cancelled";
+      job.stopped_by = "cancelled";
+    }
   } catch (const std::exception& e) {
     const std::lock_guard lock(job.mutex);
     job.state = "failed";
     job.error = e.what();
   }
+  const std::lock_guard lock(job.mutex);
   job.finished = true;
+  job.ended.notify_all();
 }
 
 }  // namespace
 
+std::size_t abandoned_fit_threads() noexcept { return abandoned.load(); }
+
 FitJobs::~FitJobs() {
   cancel_all();
+  const auto until = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(limits_.stop_seconds));
   const std::lock_guard lock(mutex_);
-  for (auto& w : workers_) w.thread.join();
+  for (auto& w : workers_) {
+    bool ended = false;
+    {
+      std::unique_lock job_lock(w.job->mutex);
+      ended = w.job->ended.wait_until(job_lock, until, [&] { return w.job->finished.load(); });
+    }
+    if (ended) {
+      w.thread.join();
+    } else {  // the thread holds its own Job (shared): it may run on, touching nothing of ours
+      w.thread.detach();
+      ++abandoned;
+    }
+  }
 }
 
 std::int64_t FitJobs::start(std::string_view body) {
@@ -220,13 +256,22 @@ std::int64_t FitJobs::start(std::string_view body) {
   }
   read_options(f, job->options, limits_);
   job->options.cancel = &job->cancel;
+  job->deadline = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(job->options.time_limit_s + limits_.fit_grace_seconds));
 
   const std::lock_guard lock(mutex_);
   reap_finished();
   if (running() >= limits_.max_running_fits) throw TooManyFits{running()};
+  // Cancelled jobs free their place at once, but their threads are not waited for: bound them
+  // too, so that start-and-cancel cannot pile up threads.
+  if (workers_.size() >= 2 * limits_.max_running_fits) throw TooManyFits{running(), workers_.size() - running()};
   job->id = next_id_++;
   jobs_[job->id] = job;
-  workers_.push_back({job, std::thread([job] { run_job(*job); })});
+  workers_.push_back({job, std::thread([job] {
+                        const ScopedLimit limit(WorkLimit{job->deadline, &job->cancel});
+                        run_job(*job);
+                      })});
   forget_oldest_done();
   return job->id;
 }
@@ -273,7 +318,14 @@ void FitJobs::reap_finished() {
 }
 
 std::size_t FitJobs::running() const {
-  return static_cast<std::size_t>(std::count_if(workers_.begin(), workers_.end(), [](const Worker& w) { return !w.job->finished; }));
+  // A cancelled job frees its place at once, also while its thread is still winding down.
+  return static_cast<std::size_t>(std::count_if(workers_.begin(), workers_.end(),
+                                                [](const Worker& w) { return !w.job->finished && !w.job->cancel; }));
+}
+
+std::size_t FitJobs::running_count() const {
+  const std::lock_guard lock(mutex_);
+  return running();
 }
 
 void FitJobs::forget_oldest_done() {

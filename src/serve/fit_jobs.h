@@ -18,12 +18,18 @@ namespace specula::serve {
 /// Thrown by FitJobs::start when Limits::max_running_fits jobs are running (HTTP 429).
 struct TooManyFits {
   std::size_t running;
+  std::size_t winding_down = 0;  ///< cancelled jobs whose threads have not ended yet
 };
 
+/// Each job runs on a thread of its own under a WorkLimit (specula/interrupt) with its cancel
+/// flag and a deadline of its time budget + Limits::fit_grace_seconds, so that the library's
+/// interrupt checks end it as well as the search's own budget checks.
 class FitJobs {
  public:
   explicit FitJobs(const Limits& limits) : limits_(limits) {}
-  ~FitJobs();  ///< cancels every job and waits for its thread
+  /// Cancels every job and joins its thread, waiting Limits::stop_seconds at most: a thread that
+  /// has not ended by then is left running, detached (abandoned_fit_threads(), server.h).
+  ~FitJobs();
   FitJobs(const FitJobs&) = delete;
   FitJobs& operator=(const FitJobs&) = delete;
 
@@ -35,6 +41,8 @@ class FitJobs {
   /// nullopt for an unknown id.
   std::optional<std::string> cancel(std::int64_t id);
   void cancel_all();
+  /// Jobs running and not cancelled: those that count against Limits::max_running_fits.
+  std::size_t running_count() const;
 
   struct Job;
 
@@ -45,7 +53,7 @@ class FitJobs {
   };
   void reap_finished();      // joins finished workers; caller holds mutex_
   void forget_oldest_done();  // keeps at most max_kept_fits finished jobs; caller holds mutex_
-  std::size_t running() const;  // caller holds mutex_
+  std::size_t running() const;  // running and not cancelled; caller holds mutex_
 
   const Limits& limits_;
   mutable std::mutex mutex_;

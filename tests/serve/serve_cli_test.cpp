@@ -9,7 +9,9 @@
 
 #include <chrono>
 #include <fmt/format.h>
+#include <iostream>
 #include <thread>
+#include <vector>
 
 #include "serve_support.h"
 
@@ -117,6 +119,43 @@ TEST(ServeCli, ExitsZeroOnSigintWithAFitJobRunning) {
   ASSERT_EQ(post(port, "/api/fit", R"({"model": "log", "generations": 100000, "time": 60})").status, 202);
   serve.signal(SIGINT);
   EXPECT_EQ(serve.exit_code(), 0);
+}
+
+TEST(ServeCli, ExitsZeroWithinASecondOfSigtermWithRequestsAndAFitInFlight) {
+  ServeProcess serve({"--port", "0"});
+  const int port = port_of(serve.first_line());
+  ASSERT_GT(port, 0);
+  std::vector<std::thread> heavy;
+  for (int i = 0; i < 3; ++i)
+    heavy.emplace_back([port] { post(port, "/api/check", R"({"model": "ggx", "step": 0.01, "pairs": 1})"); });
+  specula::testing::RawConnection drip(port);
+  ASSERT_TRUE(drip.send("GET /api/mo"));
+  ASSERT_EQ(post(port, "/api/fit", R"({"model": "log", "generations": 100000, "time": 60})").status, 202);
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  const auto start = std::chrono::steady_clock::now();
+  serve.signal(SIGTERM);
+  EXPECT_EQ(serve.exit_code(), 0);
+  const double took = specula::testing::seconds_since(start);
+  std::cout << "[ measured ] exited " << took << " s after SIGTERM\n";
+  EXPECT_LT(took, 1.0);
+  for (auto& t : heavy) t.join();
+}
+
+TEST(ServeCli, ExitsZeroOnSigtermWithAFitJobThatDoesNotStop) {
+  ServeProcess serve({"--port", "0"});
+  const int port = port_of(serve.first_line());
+  ASSERT_GT(port, 0);
+  // A search of a formula space smaller than its population (serve_jobs_test.cpp): one that may
+  // not notice its cancel flag. The server waits Limits::stop_seconds for it, then exits anyway.
+  ASSERT_EQ(post(port, "/api/fit", R"({"data": {"columns": {"x": [1, 2, 3, 4], "y": [2, 4, 6, 8]}, "target": "y"},
+                                       "ops": "+", "max_size": 1, "time": 2})").status, 202);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto start = std::chrono::steady_clock::now();
+  serve.signal(SIGTERM);
+  EXPECT_EQ(serve.exit_code(), 0);  // not 143, the hard exit of the signal's grace period
+  const double took = specula::testing::seconds_since(start);
+  std::cout << "[ measured ] exited " << took << " s after SIGTERM\n";
+  EXPECT_LT(took, 1.5);
 }
 
 TEST(ServeCli, APortInUseIsAnError) {

@@ -3,8 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <fmt/format.h>
+#include <functional>
+#include <memory>
 #include <thread>
 
 #include "serve_support.h"
@@ -166,6 +170,69 @@ TEST(ServeFit, DestroyingTheServerWithAJobRunningReturns) {
   const std::int64_t id = start(server->port(), {{"model", "log"}, {"generations", 100000}, {"time", 60}});
   EXPECT_EQ(get(server->port(), fmt::format("/api/fit/{}", id)).json()["state"], "running");
   server.reset();  // stops listening, cancels the job and joins its thread (a hang fails by timeout)
+}
+
+/// A fit whose formula space (x and one constant, size 1) is smaller than its population: the
+/// search filled the population for ever (src/fit/search.cpp, Island::populate), kept a core busy
+/// after DELETE said "cancelled", held its place (later fits got 429) and stopped the server from
+/// stopping.
+const json& tiny_space() {
+  static const json request{{"data", {{"columns", {{"x", {1, 2, 3, 4}}, {"y", {2, 4, 6, 8}}}}, {"target", "y"}}},
+                            {"ops", "+"}, {"max_size", 1}, {"time", 2}};
+  return request;
+}
+
+/// Runs `f` on a thread of its own and says whether it returned within `limit`. If it did not,
+/// the test has failed and cannot go on (`f` holds what it uses): the process ends here, failing,
+/// rather than hang until ctest's timeout.
+bool returns_within(std::function<void()> f, std::chrono::seconds limit, const char* what) {
+  auto done = std::make_shared<std::atomic<bool>>(false);
+  std::thread([f = std::move(f), done] {
+    f();
+    *done = true;
+  }).detach();
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (!*done && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (*done) return true;
+  std::cerr << "FAILED: " << what << " did not return within " << limit.count() << " s\n";
+  std::cout.flush();
+  std::_Exit(1);
+}
+
+TEST(ServeFit, ASearchOfATinyFormulaSpaceEndsWithinItsTime) {
+  auto server = std::make_unique<TestServer>();
+  const std::int64_t id = start(server->port(), tiny_space());
+  json status;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);  // "time": 2
+  while (std::chrono::steady_clock::now() < until) {
+    status = get(server->port(), fmt::format("/api/fit/{}", id)).json();
+    if (status["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status["state"], "done") << "30 s after a start with \"time\": 2\n" << status.dump(2);
+  EXPECT_TRUE(returns_within([&] { server.reset(); }, std::chrono::seconds(10), "stopping the server"));
+}
+
+TEST(ServeFit, ACancelledJobFreesItsPlaceAtOnceAndTheServerStillStops) {
+  Limits limits;
+  limits.max_running_fits = 1;
+  auto server = std::make_unique<TestServer>(limits);
+  const int port = server->port();
+  const std::int64_t first = start(port, tiny_space());
+  ASSERT_GT(first, 0);
+  std::this_thread::sleep_for(std::chrono::seconds(1));  // well into its search (a cancel at once came before it looped)
+  EXPECT_EQ(del(port, fmt::format("/api/fit/{}", first)).status, 200);
+  // Its place is free, whether or not its search has noticed the cancel yet.
+  const json endless{{"model", "log"}, {"generations", 100000}, {"time", 60}};
+  const std::int64_t second = start(port, endless);
+  EXPECT_GT(second, 0);
+  // Control: the limit holds for jobs that run.
+  EXPECT_EQ(specula::testing::post_json(port, "/api/fit", endless).status, 429);
+  const auto stopping = std::chrono::steady_clock::now();
+  EXPECT_TRUE(returns_within([&] { server.reset(); }, std::chrono::seconds(10), "stopping the server"));
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - stopping).count();
+  std::cout << "[ measured ] stopped in " << took << " s with a cancelled tiny-space job and a running one\n";
+  EXPECT_LT(took, 1.0);
 }
 
 TEST(ServeAddresses, LoopbackAndUrls) {

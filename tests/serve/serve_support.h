@@ -3,11 +3,14 @@
 // JSON requests through httplib's client, and raw request lines that no client rewrites.
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -95,6 +98,103 @@ inline std::pair<int, std::string> raw_request(int port, const std::string& requ
   ::close(fd);
   const auto space = response.find(' ');
   return {space == std::string::npos ? 0 : std::atoi(response.c_str() + space + 1), response};
+}
+
+/// One connection of a client that writes exactly what it is given, as slowly as it likes, and
+/// reads answers with a bound on every wait (a server that holds the connection fails a test
+/// rather than hanging it).
+class RawConnection {
+ public:
+  explicit RawConnection(int port) : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    connected_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
+  }
+  ~RawConnection() { ::close(fd_); }
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+
+  bool connected() const { return connected_; }
+  bool send(const std::string& text) { return ::send(fd_, text.data(), text.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(text.size()); }
+
+  struct Response {
+    int status = 0;  ///< 0: none came (closed, or nothing within the wait)
+    std::string head;  ///< status line and headers
+    std::string body;
+    std::size_t bytes = 0;  ///< all of it, as sent
+    std::string header(const std::string& name) const {
+      std::string lower_head, key = "\r\n" + name + ":";
+      for (const char c : head) lower_head += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      for (char& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const auto at = lower_head.find(key);
+      if (at == std::string::npos) return {};
+      auto begin = at + key.size();
+      while (begin < head.size() && head[begin] == ' ') ++begin;
+      return head.substr(begin, head.find("\r\n", begin) - begin);
+    }
+  };
+
+  /// The next answer (its Content-Length bytes of body, or all until the server closes; none for
+  /// the answer to a HEAD), waiting at most `wait` for each piece.
+  Response read(std::chrono::milliseconds wait = std::chrono::seconds(60), bool head_request = false) {
+    Response r;
+    std::size_t head_end;
+    while ((head_end = pending_.find("\r\n\r\n")) == std::string::npos)
+      if (!fill(wait)) return r;
+    r.head = pending_.substr(0, head_end + 2);
+    pending_.erase(0, head_end + 4);
+    r.status = r.head.size() > 12 ? std::atoi(r.head.c_str() + 9) : 0;
+    const std::string length = r.header("Content-Length");
+    if (head_request) {
+    } else if (!length.empty()) {
+      const std::size_t n = std::stoul(length);
+      while (pending_.size() < n)
+        if (!fill(wait)) break;
+      r.body = pending_.substr(0, n);
+      pending_.erase(0, r.body.size());
+    } else {
+      while (fill(wait)) {}
+      r.body.swap(pending_);
+    }
+    r.bytes = head_end + 4 + r.body.size();
+    return r;
+  }
+
+  /// Whether the server has closed the connection (EOF) within `wait`.
+  bool closed_within(std::chrono::milliseconds wait) {
+    const auto until = std::chrono::steady_clock::now() + wait;
+    while (std::chrono::steady_clock::now() < until) {
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, 20) <= 0) continue;
+      char c;
+      const ssize_t got = ::recv(fd_, &c, 1, 0);
+      if (got <= 0) return true;
+      pending_ += c;
+    }
+    return false;
+  }
+
+ private:
+  bool fill(std::chrono::milliseconds wait) {
+    pollfd p{fd_, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(wait.count())) <= 0) return false;
+    char buffer[65536];
+    const ssize_t got = ::recv(fd_, buffer, sizeof buffer, 0);
+    if (got <= 0) return false;
+    pending_.append(buffer, static_cast<std::size_t>(got));
+    return true;
+  }
+
+  int fd_;
+  bool connected_ = false;
+  std::string pending_;
+};
+
+/// Seconds since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace specula::testing

@@ -2,8 +2,9 @@
 // The JSON API of `specula serve` without the HTTP transport: a request (method, path, body) in,
 // a response (status, content type, body) out. Every /api response is JSON; errors are
 // {"error": "...", "field": "..."} with 400 (bad field), 404 (unknown route or job), 405 (wrong
-// method), 413 (body too large) or 429 (too many fit jobs). Any other path is one of the page's
-// assets compiled into the binary, or 404. See docs/serve.md.
+// method), 413 (body too large), 429 (too many fit jobs) or 503 (busy, past the request's time
+// cap, or stopping). Any other path is one of the page's assets compiled into the binary, or 404.
+// See docs/serve.md.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -32,6 +33,18 @@ struct Limits {
   int max_fit_islands = 8;
   std::size_t max_running_fits = 2;
   std::size_t max_kept_fits = 16;         ///< finished jobs kept for polling; older ones are dropped
+  double fit_grace_seconds = 5;           ///< past its time, a job's library calls stop (Interrupted)
+
+  // Time and concurrency: no request, connection or client holds the server.
+  double request_seconds = 5;             ///< the work of one request; then 503 and its thread is free
+  std::size_t max_busy_requests = 4;      ///< computed requests (POST /api/...) running at once
+  double busy_wait_seconds = 1;           ///< one more waits this long for a place, then 503 "busy"
+  double read_seconds = 5;                ///< to receive a request (line, headers, body) once begun; then 408
+  double idle_seconds = 5;                ///< an idle keep-alive connection is closed after this
+  std::size_t max_keep_alive_requests = 100;  ///< requests on one connection
+  double write_seconds = 5;               ///< to send one response
+  std::size_t max_connections = 256;      ///< served at once, one thread each; more wait to be accepted
+  double stop_seconds = 0.5;              ///< on stop, how long running fit jobs get to end
 };
 
 struct Request {
@@ -62,6 +75,9 @@ class Api {
 
   /// Asks every running fit job to stop (they finish within one budget check).
   void cancel_fits();
+  /// Stops for good: requests in flight and later ones end with 503 "stopping" at their next
+  /// interrupt check, and every fit job is cancelled. Returns at once.
+  void stop();
 
   const Limits& limits() const noexcept;
 

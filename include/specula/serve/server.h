@@ -19,7 +19,9 @@ class Server {
   int bind(const std::string& host, int port);
   /// Serves requests until stop(); call after bind().
   void run();
-  /// Stops listening, cancels the fit jobs; safe from any thread, also before run().
+  /// Stops listening, ends the connections (each within 50 ms), stops requests in flight at
+  /// their next interrupt check (503) and cancels the fit jobs; returns at once. Safe from any
+  /// thread, also before run(). run() returns once every connection has ended.
   void stop();
   /// True while run() is accepting connections.
   bool running() const;
@@ -28,6 +30,11 @@ class Server {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Threads of fit jobs left running when their server was destroyed: a search that had checked
+/// neither its cancel flag nor its work limit Limits::stop_seconds after the stop. The CLI then
+/// exits at once rather than run static destructors under them.
+std::size_t abandoned_fit_threads() noexcept;
 
 /// True for addresses only this machine can reach: localhost, 127.0.0.0/8, ::1.
 bool is_loopback(const std::string& host);
