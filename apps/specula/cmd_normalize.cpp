@@ -49,7 +49,7 @@ void add_normalize_command(CLI::App& app) {
       ->check(CLI::Range(0.01, 45.0));
   o->output.add_to(*cmd);
   cmd->footer(
-      "k solves k · 2π ∫ F(c) cos θ sin θ dθ = 1 with the lobe centred on the normal (MATH.md §1);\n"
+      "k solves k · 2π ∫ F(c) cos θ sin θ dθ = 1 with the lobe centred on the normal (docs/math.md §1);\n"
       "the lobe's only parameter swept is n, others come from --param. Examples:\n"
       "  specula normalize --model log --n 1:7 --round 3        # the paper's Fig. 5 table\n"
       "  specula normalize --model log --n 1:1000@50:log --method both\n"

@@ -144,7 +144,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "Output image: FILE.png (8-bit sRGB) or FILE.exr (linear)")->required();
   cmd->add_flag("--verbose,-v", o->verbose, "Print the render and write times (and the GL renderer) to stderr");
   cmd->footer(
-      "Shading (MATH.md §5): L = ambient·diffuse + Σ_lights (diffuse/π + specular·f(N, L, V))·E·max(0, N·L),\n"
+      "Shading (docs/math.md §5): L = ambient·diffuse + Σ_lights (diffuse/π + specular·f(N, L, V))·E·max(0, N·L),\n"
       "one ray per pixel centre; OBJ meshes cast shadows. PNG and EXR carry the model, its parameters,\n"
       "form and the render settings as text metadata. Examples:\n"
       "  specula render --model log-normalized -p n=50 --out sphere.png\n"

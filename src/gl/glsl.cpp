@@ -40,17 +40,17 @@ void add_pi(Source& src) {
   src.add("SPECULA_PI", fmt::format("// pi, rounded to float.\nconst float SPECULA_PI = {};\n", lit(kPi)));
 }
 
-// --- Forms (MATH.md §1) ---
+// --- Forms (docs/math.md §1) ---
 
 std::string add_form_cosine(Source& src, Form form) {
   if (form == Form::rv) {
-    src.add("specula_cos_rv", R"(// MATH.md 1, form rv (Phong 1975): c = R.V, R = 2(N.L)N - L the mirror direction of L.
+    src.add("specula_cos_rv", R"(// docs/math.md 1, form rv (Phong 1975): c = R.V, R = 2(N.L)N - L the mirror direction of L.
 float specula_cos_rv(vec3 N, vec3 L, vec3 V) {
   return dot(2.0 * dot(N, L) * N - L, V);
 })");
     return "specula_cos_rv";
   }
-  src.add("specula_cos_nh", R"(// MATH.md 1, form nh (Blinn 1977): c = N.H, H = (L + V)/|L + V|.
+  src.add("specula_cos_nh", R"(// docs/math.md 1, form nh (Blinn 1977): c = N.H, H = (L + V)/|L + V|.
 float specula_cos_nh(vec3 N, vec3 L, vec3 V) {
   vec3 h = L + V;
   float len2 = dot(h, h);
@@ -59,7 +59,7 @@ float specula_cos_nh(vec3 N, vec3 L, vec3 V) {
   return "specula_cos_nh";
 }
 
-// --- Lobes (MATH.md §2): F(c) with F(1) = 1, 0 for c <= 0, c clamped to 1 ---
+// --- Lobes (docs/math.md §2): F(c) with F(1) = 1, 0 for c <= 0, c clamped to 1 ---
 
 struct LobeCall {
   std::string function;
@@ -69,20 +69,20 @@ struct LobeCall {
 LobeCall add_lobe(Source& src, const lobes::Lobe& lobe) {
   switch (lobe.index()) {
     case 0:
-      src.add("specula_power_lobe", R"(// MATH.md 2 `phong` (Phong 1975): F = c^n.
+      src.add("specula_power_lobe", R"(// docs/math.md 2 `phong` (Phong 1975): F = c^n.
 float specula_power_lobe(float c, float n) {
   return c > 0.0 ? pow(min(c, 1.0), n) : 0.0;
 })");
       return {"specula_power_lobe", ""};
     case 1:
-      src.add("specula_schlick_lobe", R"(// MATH.md 2 `schlick` (Schlick 1994): F = c/(n - n c + c), a rational approximation of c^n.
+      src.add("specula_schlick_lobe", R"(// docs/math.md 2 `schlick` (Schlick 1994): F = c/(n - n c + c), a rational approximation of c^n.
 float specula_schlick_lobe(float c, float n) {
   c = clamp(c, 0.0, 1.0);
   return c / (n * (1.0 - c) + c);
 })");
       return {"specula_schlick_lobe", ""};
     case 2:
-      src.add("specula_schlick_modified_lobe", R"(// MATH.md 2 `schlick-modified` (Schlick 1994, second degree; reconstructed): F = (s c)^2/(n - n c + s c)^2.
+      src.add("specula_schlick_modified_lobe", R"(// docs/math.md 2 `schlick-modified` (Schlick 1994, second degree; reconstructed): F = (s c)^2/(n - n c + s c)^2.
 float specula_schlick_modified_lobe(float c, float n, float s) {
   c = clamp(c, 0.0, 1.0);
   float q = s * c / (n * (1.0 - c) + s * c);
@@ -90,14 +90,14 @@ float specula_schlick_modified_lobe(float c, float n, float s) {
 })");
       return {"specula_schlick_modified_lobe", ", s"};
     case 3:
-      src.add("specula_gauss_lobe", R"(// MATH.md 2 `gauss` (the paper's Gauss lobe): F = exp(-n theta^2/2), theta = acos c.
+      src.add("specula_gauss_lobe", R"(// docs/math.md 2 `gauss` (the paper's Gauss lobe): F = exp(-n theta^2/2), theta = acos c.
 float specula_gauss_lobe(float c, float n) {
   float theta = acos(clamp(c, -1.0, 1.0));
   return c > 0.0 ? exp(-0.5 * n * theta * theta) : 0.0;
 })");
       return {"specula_gauss_lobe", ""};
     default:
-      src.add("specula_log_lobe", R"(// Romanyuk et al. 2023, F_log (MATH.md 2 `log`): F = max(0, 1 - log2(1 - n log2 c)/2), 0 for c <= 2^(-3/n).
+      src.add("specula_log_lobe", R"(// Romanyuk et al. 2023, F_log (docs/math.md 2 `log`): F = max(0, 1 - log2(1 - n log2 c)/2), 0 for c <= 2^(-3/n).
 float specula_log_lobe(float c, float n) {
   if (c <= 0.0) return 0.0;
   return max(1.0 - 0.5 * log2(1.0 - n * log2(min(c, 1.0))), 0.0);
@@ -106,7 +106,7 @@ float specula_log_lobe(float c, float n) {
   }
 }
 
-// --- Normalizing coefficients k(n) (MATH.md §2, §4) ---
+// --- Normalizing coefficients k(n) (docs/math.md §2, §4) ---
 
 /// Clenshaw's recurrence for a series of normalize::log_coef_chebyshev, unrolled.
 std::string chebyshev_function(const std::string& name, std::span<const double> c, double high) {
@@ -125,7 +125,7 @@ std::string add_log_rv_coef(Source& src) {
   src.add("specula_log_coef_j", chebyshev_function("specula_log_coef_j", cheb::kJ, cheb::kJHigh));
   src.add("specula_log_coef_k", chebyshev_function("specula_log_coef_k", cheb::kK, cheb::kKHigh));
   src.add("specula_log_rv_coef", fmt::format(
-      R"(// MATH.md 4 (Romanyuk et al. 2023, exact): coef(n) = 1/(pi a J(a)), a = 2 ln2/n; J (n >= 1) and K = a J (n < 1)
+      R"(// docs/math.md 4 (Romanyuk et al. 2023, exact): coef(n) = 1/(pi a J(a)), a = 2 ln2/n; J (n >= 1) and K = a J (n < 1)
 // by Chebyshev series: 4e-7 relative in float for n in (0, 1e30] (normalize::log_rv_approx, same arithmetic).
 float specula_log_rv_coef(float n) {{
   if (n >= 1.0) return n * {} / specula_log_coef_j({} / n);
@@ -137,7 +137,7 @@ float specula_log_rv_coef(float n) {{
 
 std::string add_schlick_rv_coef(Source& src) {
   add_pi(src);
-  src.add("specula_schlick_rv_coef", R"(// MATH.md 2 (Schlick 1994 lobe, rv form, exact): k = 1/(2 pi I), I = n^2 ln n/(n-1)^3 - n/(n-1)^2 - 1/(2(n-1)),
+  src.add("specula_schlick_rv_coef", R"(// docs/math.md 2 (Schlick 1994 lobe, rv form, exact): k = 1/(2 pi I), I = n^2 ln n/(n-1)^3 - n/(n-1)^2 - 1/(2(n-1)),
 // or I = sum_j (1-n)^j 2/((j+1)(j+2)(j+3)) where that form cancels (|1 - n| <= 1/2; 24 terms reach float precision).
 float specula_schlick_rv_coef(float n) {
   float m = 1.0 - n;
@@ -171,23 +171,23 @@ std::string add_simple_coef(Source& src, const std::string& name, const std::str
 std::string add_coef(Source& src, std::string_view id) {
   if (id == "phong-normalized")
     return add_simple_coef(src, "specula_phong_rv_coef",
-                           "MATH.md 2 `phong-normalized` (Lewis 1994): k = (n + 2)/(2 pi), exact for the rv form.",
+                           "docs/math.md 2 `phong-normalized` (Lewis 1994): k = (n + 2)/(2 pi), exact for the rv form.",
                            "(n + 2.0) / (2.0 * SPECULA_PI)");
   if (id == "phong-lafortune")
     return add_simple_coef(src, "specula_phong_lafortune_coef",
-                           "MATH.md 2 `phong-lafortune` (Lafortune & Willems 1994): k = (n + 1)/(2 pi), without the cos term.",
+                           "docs/math.md 2 `phong-lafortune` (Lafortune & Willems 1994): k = (n + 1)/(2 pi), without the cos term.",
                            "(n + 1.0) / (2.0 * SPECULA_PI)");
   if (id == "blinn-phong-normalized")
     return add_simple_coef(src, "specula_blinn_phong_nh_coef",
-                           "MATH.md 2 `blinn-phong-normalized` (Giesen 2009): k = (n+2)(n+4)/(8 pi (2^(-n/2) + n)), exact for nh.",
+                           "docs/math.md 2 `blinn-phong-normalized` (Giesen 2009): k = (n+2)(n+4)/(8 pi (2^(-n/2) + n)), exact for nh.",
                            "(n + 2.0) * (n + 4.0) / (8.0 * SPECULA_PI * (exp2(-0.5 * n) + n))");
   if (id == "blinn-phong-approx")
     return add_simple_coef(src, "specula_blinn_phong_approx_coef",
-                           "MATH.md 2 `blinn-phong-approx` (Real-Time Rendering): k = (n + 8)/(8 pi), 2-8 % high.",
+                           "docs/math.md 2 `blinn-phong-approx` (Real-Time Rendering): k = (n + 8)/(8 pi), 2-8 % high.",
                            "(n + 8.0) / (8.0 * SPECULA_PI)");
   if (id == "log-paper")
     return add_simple_coef(src, "specula_log_paper_coef",
-                           "Romanyuk et al. 2023, the paper's TuringBot fit as printed (MATH.md 2 `log-paper`).",
+                           "Romanyuk et al. 2023, the paper's TuringBot fit as printed (docs/math.md 2 `log-paper`).",
                            "0.197 * (n + 1.24) + 0.068 / (0.64 + n)");
   if (id == "schlick-normalized") return add_schlick_rv_coef(src);
   if (id == "log-normalized") return add_log_rv_coef(src);
@@ -220,33 +220,33 @@ void add_lobe_entry(Source& src, const Model& model) {
   const std::string k = coefficient_expression(src, model);
   const std::string lobe_value = fmt::format("{}({}(N, L, V), n{})", lobe.function, cosine, lobe.extra_args);
   src.add(entry_name(model),
-          fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; MATH.md 2 `{}`.\n"
+          fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; docs/math.md 2 `{}`.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  return {};\n}}",
                       model.info().name, model.info().summary, to_string(model.form()), model.info().source, model.id(),
                       entry_name(model), parameter_list(model.info()),
                       k.empty() ? lobe_value : k + " * " + lobe_value));
 }
 
-// --- Full BRDFs (MATH.md §2) ---
+// --- Full BRDFs (docs/math.md §2) ---
 
 void add_microfacet_parts(Source& src) {
   add_pi(src);
-  src.add("specula_inclination", R"(// MATH.md 2, Cook-Torrance parts: (sin^2, cos^2) of the angle between unit N and h of any length; sin^2 from |N x h|^2, exact near 0.
+  src.add("specula_inclination", R"(// docs/math.md 2, Cook-Torrance parts: (sin^2, cos^2) of the angle between unit N and h of any length; sin^2 from |N x h|^2, exact near 0.
 vec2 specula_inclination(vec3 N, vec3 h) {
   vec3 s = cross(N, h);
   float c = dot(N, h);
   return vec2(dot(s, s), c * c) / dot(h, h);
 })");
-  src.add("specula_beckmann_unnormalized", R"(// Cook & Torrance 1982 (MATH.md 2): Beckmann's exp(-tan^2 d/m^2)/(m^2 cos^4 d), without the 1/pi of a normalized NDF.
+  src.add("specula_beckmann_unnormalized", R"(// Cook & Torrance 1982 (docs/math.md 2): Beckmann's exp(-tan^2 d/m^2)/(m^2 cos^4 d), without the 1/pi of a normalized NDF.
 float specula_beckmann_unnormalized(vec2 incl, float m) {
   float m2 = m * m;
   return exp(-(incl.x / incl.y) / m2) / (m2 * incl.y * incl.y);
 })");
-  src.add("specula_g_vcavity", R"(// Cook & Torrance 1982 (MATH.md 2): V-cavity masking-shadowing G = min(1, 2(N.H)(N.V)/(V.H), 2(N.H)(N.L)/(V.H)).
+  src.add("specula_g_vcavity", R"(// Cook & Torrance 1982 (docs/math.md 2): V-cavity masking-shadowing G = min(1, 2(N.H)(N.V)/(V.H), 2(N.H)(N.L)/(V.H)).
 float specula_g_vcavity(float nh, float nv, float nl, float vh) {
   return min(1.0, min(2.0 * nh * nv / vh, 2.0 * nh * nl / vh));
 })");
-  src.add("specula_fresnel_schlick", R"(// Schlick 1994 (MATH.md 2): F = F0 + (1 - F0)(1 - V.H)^5.
+  src.add("specula_fresnel_schlick", R"(// Schlick 1994 (docs/math.md 2): F = F0 + (1 - F0)(1 - V.H)^5.
 float specula_fresnel_schlick(float vh, float f0) {
   float m = 1.0 - vh;
   float m2 = m * m;
@@ -255,7 +255,7 @@ float specula_fresnel_schlick(float vh, float f0) {
 }
 
 void add_fresnel_dielectric(Source& src) {
-  src.add("specula_fresnel_dielectric", R"(// Cook & Torrance 1982, eq. 8 (MATH.md 2): unpolarized dielectric Fresnel, eta = (1 + sqrt F0)/(1 - sqrt F0); F0 = 1 gives F = 1.
+  src.add("specula_fresnel_dielectric", R"(// Cook & Torrance 1982, eq. 8 (docs/math.md 2): unpolarized dielectric Fresnel, eta = (1 + sqrt F0)/(1 - sqrt F0); F0 = 1 gives F = 1.
 float specula_fresnel_dielectric(float vh, float f0) {
   if (f0 >= 1.0) return 1.0;
   float r = sqrt(f0);
@@ -316,7 +316,7 @@ std::string brdf_lines(Source& src, const FullBrdf& brdf) {
 
 void add_brdf_entry(Source& src, const Model& model) {
   const std::string lines = brdf_lines(src, model.brdf());
-  src.add(entry_name(model), fmt::format("// {}: f = {}. Source: {}; MATH.md 2 `{}`.\n"
+  src.add(entry_name(model), fmt::format("// {}: f = {}. Source: {}; docs/math.md 2 `{}`.\n"
                                          "float {}(vec3 N, vec3 L, vec3 V{}) {{\n{}}}",
                                          model.info().name, model.info().summary, model.info().source, model.id(),
                                          entry_name(model), parameter_list(model.info()), brdf_body(lines)));
@@ -335,7 +335,7 @@ std::string entry_arguments(const ModelInfo& info) {
   return args;
 }
 
-/// ASCII only: the GLSL 3.30 character set (MATH.md's symbols are spelled out instead).
+/// ASCII only: the GLSL 3.30 character set (docs/math.md's symbols are spelled out instead).
 std::string ascii(std::string text) {
   static const std::pair<std::string_view, std::string_view> spelled[] = {
       {"π", "pi"}, {"θ", "theta"}, {"δ", "d"}, {"α", "alpha"}, {"ρ", "rho"}, {"·", "."}, {"½", "1/2 "}, {"²", "^2"},

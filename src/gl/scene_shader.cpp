@@ -236,7 +236,7 @@ bool scene_in_shadow(SceneSurface s, vec3 L, float distance) {
   return scene_occluded(origin, L, distance - length(origin - s.point));
 }
 
-// MATH.md 5 (the paper's local illumination, render.cpp Shader::surface_radiance): L_o = ambient rho_d + sum over lights of (rho_d/pi + rho_s f(N, L, V)) E max(0, N.L), lights at N.L <= 0 or in shadow dropped. Shadow rays only where the CPU casts them: more than one sphere, or a mesh.
+// docs/math.md 5 (the paper's local illumination, render.cpp Shader::surface_radiance): L_o = ambient rho_d + sum over lights of (rho_d/pi + rho_s f(N, L, V)) E max(0, N.L), lights at N.L <= 0 or in shadow dropped. Shadow rays only where the CPU casts them: more than one sphere, or a mesh.
 vec3 scene_surface_radiance(SceneSurface s, vec3 V) {
   vec3 sum = u_ambient * u_diffuse;
   bool shadows = u_triangle_count > 0 || u_sphere_count > 1;
@@ -306,7 +306,7 @@ std::string uniform_documentation(const Model& model) {
   const render::RenderSettings size{512, 512};
   const SceneUniforms d = scene_uniforms(render::default_scene(model), size);
   std::string text = fmt::format(
-      "// specula scene shader: the CPU renderer's pixel (render/render.h, MATH.md 5) with model '{}'.\n"
+      "// specula scene shader: the CPU renderer's pixel (render/render.h, docs/math.md 5) with model '{}'.\n"
       "// Draw 3 vertices of scene_vertex_shader over the image (or tiles of it) and set every uniform;\n"
       "// specula's gl::scene_uniforms and gl::mesh_textures compute them from a render::Scene. The\n"
       "// default scene's values at 512x512 are in brackets: a unit sphere lit from the upper left front.\n",

@@ -1,4 +1,4 @@
-// The model catalogue: MATH.md §2, one entry per model id.
+// The model catalogue: docs/math.md §2, one entry per model id.
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -79,13 +79,13 @@ std::vector<ModelInfo> build_catalogue() {
                          [](Values p) { return lobe_with<Schlick<>>(p, Form::rv, 1); }));
   m.push_back(lobe_model("schlick-normalized", "Normalized Schlick",
                          "F = c/(n − n c + c), k exact for rv form",
-                         "Schlick 1994; k from MATH.md §2", Form::rv, Normalization::exact,
+                         "Schlick 1994; k from docs/math.md §2", Form::rv, Normalization::exact,
                          "1/(2π[n² ln n/(n−1)³ − n/(n−1)² − 1/(2(n−1))])", [](Values p) {
                            return lobe_with<Schlick<>>(p, Form::rv, normalize::schlick_rv(p[0]));
                          }));
   ModelInfo modified = lobe_model(
       "schlick-modified", "Schlick, second degree", "F = (s c)²/(n − n c + s c)²",
-      "Schlick 1994, as cited by the paper (reconstructed, MATH.md §2)", Form::rv,
+      "Schlick 1994, as cited by the paper (reconstructed, docs/math.md §2)", Form::rv,
       Normalization::none, "1", [](Values p) -> Impl {
         return LobeModel{lobes::SchlickModified<>{p[0], p[1]}, Form::rv, 1};
       });
@@ -99,7 +99,7 @@ std::vector<ModelInfo> build_catalogue() {
                          [](Values p) { return lobe_with<Log<>>(p, Form::rv, 1); }));
   m.push_back(lobe_model("log-normalized", "Logarithmic lobe, exact normalization",
                          "F_log with k = coef(n) in closed form (E₁)",
-                         "Romanyuk et al. 2023; closed form MATH.md §4", Form::rv,
+                         "Romanyuk et al. 2023; closed form docs/math.md §4", Form::rv,
                          Normalization::exact,
                          "1/(π(1 − e^a/(2 ln 2)(E₁(a) − E₁(4a)))), a = 2 ln 2/n", [](Values p) {
                            return lobe_with<Log<>>(p, Form::rv, normalize::log_rv(p[0]));

@@ -31,7 +31,7 @@ double scaled_e1(double x) noexcept {
   return sum;
 }
 
-/// g(a) = ∫₀³ (1 − ½ log₂(1 + s)) e^(−a s) ds, the log lobe's integral in t-space (MATH.md §4):
+/// g(a) = ∫₀³ (1 − ½ log₂(1 + s)) e^(−a s) ds, the log lobe's integral in t-space (docs/math.md §4):
 /// Int(n) = (a/2) g(a). For a ≤ 1 from E₁(a) − E₁(4a) = ln 4 + D'(a), D'(a) = Σ_{k≥1}
 /// (−1)^k (4^k − 1) a^k/(k·k!), so that g = −[expm1(a)/a + e^a (D'(a)/a)/ln 4] never subtracts
 /// two numbers near 1/a.

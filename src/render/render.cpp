@@ -240,7 +240,7 @@ class Shader {
     }
   }
 
-  // MATH.md §5: L_o = ambient·ρ_d + Σ (ρ_d/π + ρ_s f(N, L, V)) · E · max(0, N·L).
+  // docs/math.md §5: L_o = ambient·ρ_d + Σ (ρ_d/π + ρ_s f(N, L, V)) · E · max(0, N·L).
   Rgb surface_radiance(const SurfaceHit& hit, const Vec3& v) const noexcept {
     const Material& m = scene_.material;
     Rgb sum = m.ambient * m.diffuse;

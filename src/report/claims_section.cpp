@@ -62,7 +62,7 @@ std::vector<Claim> claims(const Context& c) {
                    fmt::format("Δ(1000) = {} for the printed formula; specula's exact-data fit |Δ| ≤ {}", d->text, ours->text),
                    std::abs(d->value) < 2e-3,
                    "approximately: the printed constants under-normalize by ≈ 0.13 % at large n; "
-                   "the closed form (MATH.md §4) is exact"});
+                   "the closed form (docs/math.md §4) is exact"});
   }
   if (auto a = get(c, "log_normalized_max_albedo"), where = get(c, "log_normalized_max_albedo_deg"); a && where) {
     const bool conserves = a->value <= 1 + 1e-7;

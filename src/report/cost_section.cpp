@@ -1,5 +1,5 @@
 // Beyond the paper: what a model costs to evaluate on the machine writing the report, next to how
-// far its lobe is from cⁿ (MATH.md §3) — the trade the paper makes when it replaces a power by a
+// far its lobe is from cⁿ (docs/math.md §3) — the trade the paper makes when it replaces a power by a
 // logarithm pair. The chart comes from the lobe benchmark (bench/lobe_bench.h, `specula bench`):
 // each lobe through the scalar lobe (libm) and the SIMD exact and fast tiers; the table below it
 // times every model of the catalogue through the registry, one f(N, L, V) per call.
@@ -266,7 +266,7 @@ Section cost_section(Context& context) {
           "Timings are of the machine that wrote this report, at the time it wrote it (float lanes, one core, arrays "
           "in cache): compare them with each other, not with another machine. Each lobe's three points are the same "
           "lobe through three paths, so they share its error: its largest |F − cⁿ| over c ∈ [0, 1], found exactly "
-          "(MATH.md §3). cⁿ itself has no error: its three costs are the dashed lines.",
+          "(docs/math.md §3). cⁿ itself has no error: its three costs are the dashed lines.",
           "specula bench (the full benchmark: also double, streaming, all cores, limits)", simd_links) +
       bench_table(simd) +
       fmt::format("<p>Through the model catalogue instead, one call per value as a shader or a renderer calls it: "

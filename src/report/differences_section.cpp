@@ -1,5 +1,5 @@
 // Beyond the paper: the log lobes against the lobe they approximate, cosⁿθ (the paper's
-// "Blinn-Phong" F_B, MATH.md §2 `phong`), as difference images at several n.
+// "Blinn-Phong" F_B, docs/math.md §2 `phong`), as difference images at several n.
 #include <fmt/format.h>
 
 #include "sections.h"

@@ -1,5 +1,5 @@
 // Beyond the paper: where energy goes. Directional albedo ρ(θ_i) of every model over the
-// incidence angle, a conservation and reciprocity verdict per model and form (MATH.md §1), and
+// incidence angle, a conservation and reciprocity verdict per model and form (docs/math.md §1), and
 // the lobes drawn in the plane of incidence as BRDF Explorer shows them.
 #include <cmath>
 #include <fmt/format.h>
@@ -199,7 +199,7 @@ std::string brdf_caption(const std::vector<Energy>& entries) {
   }
   return fmt::format(
       "Log scale. Gain energy: {}. Conserve it: {}. Cook-Torrance as printed in 1982 has D without its 1/π, and "
-      "1/π in front of D F G/((N·L)(N·V)) where the normalized form has 1/4 (MATH.md §2).",
+      "1/π in front of D F G/((N·L)(N·V)) where the normalized form has 1/4 (docs/math.md §2).",
       gaining.empty() ? "none" : listed(gaining), listed(conserving));
 }
 

@@ -1,5 +1,5 @@
 // Beyond the paper: exact against fitted normalization. The published formulas for k(n) against
-// the exact closed forms (MATH.md §2), then specula's own formulas for the lobes and forms that
+// the exact closed forms (docs/math.md §2), then specula's own formulas for the lobes and forms that
 // have no closed form: k(n) by quadrature, symbolic regression (as the paper did for its lobe),
 // and the formula's worst relative error against quadrature on a grid denser than the fit's.
 #include <algorithm>
@@ -108,11 +108,11 @@ Chart published_chart(const PublishedSweep& s) {
 
 std::string published_caption(const Context& context) {
   const Published& approx = formula("blinn_phong_approx");
-  double approx_worst = 0;  // over n ∈ [1, 32], the range MATH.md §2 quotes
+  double approx_worst = 0;  // over n ∈ [1, 32], the range docs/math.md §2 quotes
   for (const double n : log_spaced(1, 32, 200)) approx_worst = std::max(approx_worst, relative_difference(approx, n));
   const double agreement = closed_form_agreement(log_spaced(1, 1000, context.quick() ? 8 : 40));
   return fmt::format(
-      "Relative difference of each formula from the exact coefficient (closed forms, MATH.md §2 and §4; they agree "
+      "Relative difference of each formula from the exact coefficient (closed forms, docs/math.md §2 and §4; they agree "
       "with specula's quadrature to {} over [1, 1000]). The paper's fit: {} at n = 1000 (it under-normalizes). "
       "(n + 8)/(8π): {} % at n = 1, up to {} % for n ≤ 32 (it over-normalizes). Lafortune's (n + 1)/(2π): exactly "
       "−1/(n + 2). Phong's (n + 2)/(2π) put on Schlick's lobe, whose tail holds far more energy: {}× the exact k at "
@@ -259,7 +259,7 @@ std::string fits_intro(const Context& context, const std::vector<OwnFit>& fits, 
   const fit::Options o = fit_options(context.quick());
   return fmt::format(
       "<p>For the lobes and forms with no known closed form, specula computes k(n) by quadrature (≥ 13 digits, "
-      "MATH.md §3) at {} log-spaced n ∈ [1, 1000] and fits a formula to it the way the paper fitted its table, "
+      "docs/math.md §3) at {} log-spaced n ∈ [1, 1000] and fits a formula to it the way the paper fitted its table, "
       "operators + × ÷ and √, ranked by mean relative error ({} generations of {} formulas on {} islands after "
       "enumerating every form up to size {}, sizes up to {}; {} formulas fitted in {:.1f} s). The error column is "
       "the formula as printed (6 digits) against quadrature at {} n, most of them between the fitted points.</p>\n",

@@ -117,7 +117,7 @@ std::string figs3_4(Context& context) {
       to_svg(error_chart(s, "Fig. 3: max relative error in the epicenter zone", "max relative error (%)",
                          &E::max_rel_epicenter, 100)),
       fmt::format("Largest |F − cosⁿθ| / cosⁿθ where cosⁿθ ≥ ½. F<sub>log</sub>: {} % to {} % — the same for every n "
-                  "(MATH.md §3: in t = −n log₂ c both lobes are independent of n). Schlick: {} % to {} % for n ∈ [2, 1000], "
+                  "(docs/math.md §3: in t = −n log₂ c both lobes are independent of n). Schlick: {} % to {} % for n ∈ [2, 1000], "
                   "growing with n (at n = 1 Schlick's lobe is c itself, exact). Maxima found exactly (dense sampling, then golden-section refinement).",
                   show(100 * rel_lo, 5), show(100 * rel_hi, 5), show(100 * srel_lo, 3), show(100 * srel_hi, 3)),
       command, links);

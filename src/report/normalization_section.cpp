@@ -18,7 +18,7 @@ namespace {
 // The paper's Fig. 5 file as printed (n = 1…7; the other 43 rows are not legible).
 constexpr double kPaperFig5[] = {0.483, 0.665, 0.855, 1.048, 1.243, 1.438, 1.634};
 
-// The paper's Fig. 8: TuringBot's Pareto front on the 50-row table (MATH.md §5).
+// The paper's Fig. 8: TuringBot's Pareto front on the 50-row table (docs/math.md §5).
 struct PaperFront {
   int size;
   double rms;
@@ -59,7 +59,7 @@ std::string fig5(Context& context) {
   const std::string links = context.save(table);
   return "<h3 id=\"fig5\">Fig. 5: the normalization table</h3>\n"
          "<p>coef(n) = 1/(2π Int(n)) makes F<sub>log</sub> reflect all the energy it receives at normal incidence. "
-         "specula computes it in closed form with the exponential integral (MATH.md §4; ≤ 10<sup>−13</sup> relative "
+         "specula computes it in closed form with the exponential integral (docs/math.md §4; ≤ 10<sup>−13</sup> relative "
          "for n ∈ [10<sup>−3</sup>, 10<sup>9</sup>]). The paper printed the first seven rows of its 50-row file:</p>\n" +
          html_table({"n", "paper", "specula, 3 decimals", "specula, exact", "verdict"}, paper_rows) +
          fmt::format("<p>All 50 rows: n<sub>0</sub> = 1, n<sub>i</sub> = max(n<sub>i−1</sub> + 1, round(1000<sup>i/49</sup>)) "
@@ -213,7 +213,7 @@ std::string fig9(Context& context, const Fits& fits) {
   return "<h3 id=\"fig9\">Fig. 9: how well the fitted formulas normalize</h3>\n" +
          context.svg_figure(
              "fig9-delta", to_svg(chart),
-             fmt::format("Δ(n) = k<sub>fit</sub>(n)·2π·Int(n) − 1, with Int(n) from the exact closed form (MATH.md §4). The "
+             fmt::format("Δ(n) = k<sub>fit</sub>(n)·2π·Int(n) − 1, with Int(n) from the exact closed form (docs/math.md §4). The "
                          "paper's printed formula under-normalizes by {} % at n = 1000 (its constants are rounded to 3 "
                          "digits); specula's size-{} formula on the exact coefficients stays within {} over [1, 1000]: "
                          "<code>{}</code>. The dotted curve is the closed form itself against an independent adaptive "

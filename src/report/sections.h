@@ -13,7 +13,7 @@ namespace specula::report {
 /// n from 1 to 1000, log-spaced (`count` values, ends included).
 std::vector<double> log_spaced(double lo, double hi, int count);
 
-// The paper, figure by figure (MATH.md §5).
+// The paper, figure by figure (docs/math.md §5).
 Section lobes_section(Context& context);          ///< Figs. 2-4: the lobes and their errors vs c^n
 Section normalization_section(Context& context);  ///< Figs. 5, 8, 9: the table, the fit, Δ(n)
 Section shader_section(Context& context);         ///< Figs. 10-11: the GLSL and the spheres

@@ -35,7 +35,7 @@ std::string fig10(Context& context) {
              "<p>What <code>specula glsl --model log-normalized</code> emits (GLSL 3.30, GLSL ES 3.00 and WebGL 2 "
              "alike; every emitted shader passes glslangValidator in specula's tests). Unlike the paper's shader, "
              "the coefficient is exact: coef(n) is computed in the shader from two Chebyshev series fitted to the "
-             "closed form (MATH.md §4), within {} relative in float for n ∈ [10<sup>−3</sup>, 10<sup>6</sup>] "
+             "closed form (docs/math.md §4), within {} relative in float for n ∈ [10<sup>−3</sup>, 10<sup>6</sup>] "
              "(measured now, in float arithmetic identical to the shader's). Each function cites its source on its "
              "first line. File: <a href=\"fig10-log-normalized.glsl\">fig10-log-normalized.glsl</a>.</p>\n",
              show(error, 2)) +

@@ -21,6 +21,8 @@ const char* type_name(const Json& value) {
 }
 
 Json parse_object(std::string_view body) {
+  // nlohmann's parser ends its input at a NUL byte, which would accept `{…}` followed by anything.
+  if (body.find('\0') != std::string_view::npos) throw InvalidField("body", "the body is not valid JSON (a NUL byte)");
   Json json = Json::parse(body, nullptr, false);
   if (json.is_discarded()) throw InvalidField("body", "the body is not valid JSON");
   if (!json.is_object())

@@ -2,7 +2,7 @@
 // hwy/foreach_target.h). Each kernel maps a vector of cosines to a vector of F(c); the stated
 // bounds are in include/specula/simd/lobes.h, the polynomials in poly_coefficients.h.
 //
-// Building blocks (MATH.md §3 for the log lobe's t-space):
+// Building blocks (docs/math.md §3 for the log lobe's t-space):
 //   SplitExponent   c = 2^e (1 + x), 1 + x ∈ [√½, √2), x exact; subnormal c included
 //   Log2Fast        log2 c to ~1 ulp of float: e + x·P₈(x), P's leading term split hi + lo
 //   Exp2Fast        2^y = 2^k (1 + f·P₄(f)), k = round(y), f = y − k ∈ [−½, ½]
@@ -432,7 +432,7 @@ struct GaussFast {
   }
 };
 
-/// log2(1 + t) on t ∈ [0, 3] as A + x·P(x) with x ∈ [√½ − 1, √2 − 1] (MATH.md §3 t-space):
+/// log2(1 + t) on t ∈ [0, 3] as A + x·P(x) with x ∈ [√½ − 1, √2 − 1] (docs/math.md §3 t-space):
 ///   t < √2 − 1:        x = t,            F = 1 − ½ log2(1 + x)
 ///   t < 2√2 − 1:       x = (t − 1)/2,    F = ½ − ½ log2(1 + x)
 ///   otherwise:         x = (t − 3)/4,    F = −½ log2(1 + x)

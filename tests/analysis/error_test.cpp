@@ -1,4 +1,4 @@
-// Approximation error maxima against closed forms and a brute-force second method (MATH.md §3).
+// Approximation error maxima against closed forms and a brute-force second method (docs/math.md §3).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,7 +44,7 @@ TEST(ApproximationError, LogEpicenterErrorIsNIndependent) {
     const double t = i / 1e6;
     expected = std::max(expected, std::abs(1 - 0.5 * std::log2(1 + t) - std::exp2(-t)) / std::exp2(-t));
   }
-  EXPECT_NEAR(expected, 0.0029, 1e-4);  // MATH.md §3: ≈ 0.29 %
+  EXPECT_NEAR(expected, 0.0029, 1e-4);  // docs/math.md §3: ≈ 0.29 %
   for (const double n : {1.0, 20.0, 1000.0})
     EXPECT_NEAR(approximation_error(lobes::Log<>{n}, lobes::Power<>{n}).max_rel_epicenter, expected, 1e-9) << n;
 }
@@ -63,7 +63,7 @@ TEST(ApproximationError, SchlickAgreesWithBruteForce) {
     const double edge = std::exp2(-1 / n);
     EXPECT_NEAR(e.max_rel_epicenter, std::abs(schlick(edge) - 0.5) / 0.5, 1e-12) << n;
   }
-  // The paper's Fig. 4 values (MATH.md §3, the issue): about 0.09 at n = 2 and 0.19 at n = 20.
+  // The paper's Fig. 4 values (docs/math.md §3, the issue): about 0.09 at n = 2 and 0.19 at n = 20.
   EXPECT_NEAR(approximation_error(lobes::Schlick<>{2}, lobes::Power<>{2}).max_abs, 0.09, 0.005);
   EXPECT_NEAR(approximation_error(lobes::Schlick<>{20}, lobes::Power<>{20}).max_abs, 0.19, 0.005);
   // And Fig. 3: ≈ 9 % at n = 2, ≈ 18 % for large n.

@@ -46,7 +46,7 @@ using specula::testing::Result;
 using specula::testing::listing;
 
 constexpr double kPi = std::numbers::pi;
-// Independent mpmath values (MATH.md §4).
+// Independent mpmath values (docs/math.md §4).
 constexpr double kCoef1 = 0.48274947790781993;
 constexpr double kCoef1000 = 197.49861008019518;
 
@@ -126,7 +126,7 @@ TEST_F(Cli, NormalizeCompareWithThePapersFit) {
   EXPECT_THAT(csv.columns, ElementsAre("n", "coef", "coef_compare", "delta"));
   ASSERT_EQ(csv.rows.size(), 1u);
   const double fit = 0.197 * (1000 + 1.24) + 0.068 / (0.64 + 1000);
-  const double expected = fit / kCoef1000 - 1;  // MATH.md §4: ≈ −1.29e-3
+  const double expected = fit / kCoef1000 - 1;  // docs/math.md §4: ≈ −1.29e-3
   EXPECT_NEAR(expected, -1.29e-3, 5e-6);
   EXPECT_NEAR(csv.rows[0][2], fit, 1e-13 * fit);
   EXPECT_NEAR(csv.rows[0][3], expected, 2e-5);
@@ -444,7 +444,7 @@ TEST_F(Cli, CheckBadInput) {
 // ---- error ----------------------------------------------------------------------------------
 
 TEST_F(Cli, ErrorOfLogAgainstPhong) {
-  // MATH.md §3: |F_log − c^n| peaks at 1/8 where c^n = 2^−3, for every n; F_log reaches 0 where
+  // docs/math.md §3: |F_log − c^n| peaks at 1/8 where c^n = 2^−3, for every n; F_log reaches 0 where
   // c^n > 0, so the relative error in the attenuation zone is 1.
   const Csv csv = parse_csv(ok({"error", "--model", "log", "--reference", "phong", "--n", "1,20,1000"}).out);
   EXPECT_THAT(csv.columns,
@@ -737,7 +737,7 @@ TEST_F(Cli, BenchQuickJsonHoldsEveryLobeAndTier) {
       const double rel = t["max_rel_error"];
       EXPECT_LE(rel, std::string(tier) == "exact" ? 6 * 0x1p-23 : 1e-4) << lobe << " " << tier;  // ULP ≤ 5 (float)
     }
-  EXPECT_NEAR(j["lobes"]["log"]["max_abs_error_vs_power"].get<double>(), 0.125, 1e-6);  // MATH.md §3
+  EXPECT_NEAR(j["lobes"]["log"]["max_abs_error_vs_power"].get<double>(), 0.125, 1e-6);  // docs/math.md §3
   EXPECT_EQ(j["lobes"]["power"]["max_abs_error_vs_power"].get<double>(), 0);
   EXPECT_GT(j["lobes"]["log"]["fast"]["float"]["ops_per_value"].get<double>(), 0);
 }

@@ -1,5 +1,5 @@
 // Every lobe family against mpmath (tests/reference/lobes.csv), in double and in float, held to
-// the error bounds their headers state; and the properties every lobe has (MATH.md §1).
+// the error bounds their headers state; and the properties every lobe has (docs/math.md §1).
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
@@ -110,7 +110,7 @@ TEST(LogLobe, ZeroAtAndBelowTheCutOffPositiveAbove) {
 }
 
 TEST(LogLobe, IsNIndependentInTSpace) {
-  // MATH.md §3: with c = 2^(−t/n), F_log = 1 − ½ log₂(1 + t) whatever n is.
+  // docs/math.md §3: with c = 2^(−t/n), F_log = 1 − ½ log₂(1 + t) whatever n is.
   for (const double t : {0.0, 0.25, 1.0, 2.0, 2.9})
     for (const double n : {1.0, 20.0, 1000.0})
       EXPECT_NEAR(Log<>{n}(std::exp2(-t / n)), 1 - 0.5 * std::log2(1 + t), 1e-12) << t << " " << n;
@@ -137,7 +137,7 @@ TEST(Lobes, BatchEqualsScalar) {
   for (int i = 0; i <= 100; ++i) EXPECT_EQ(out[i], eval(lobe, c[i]));
 }
 
-// Properties (MATH.md §1): F(1) = 1, 0 ≤ F ≤ 1, F = 0 for c ≤ 0, monotone in c.
+// Properties (docs/math.md §1): F(1) = 1, 0 ≤ F ≤ 1, F = 0 for c ≤ 0, monotone in c.
 rc::Gen<Lobe> any_lobe() {
   return rc::gen::apply(
       [](int family, double log10_n, double s) -> Lobe {

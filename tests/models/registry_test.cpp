@@ -1,4 +1,4 @@
-// The model catalogue: every model of MATH.md §2 is there, builds with its defaults, validates
+// The model catalogue: every model of docs/math.md §2 is there, builds with its defaults, validates
 // its parameters, and its k is what its normalization says.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

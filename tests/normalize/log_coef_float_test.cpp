@@ -48,7 +48,7 @@ TEST(LogCoefFloat, LimitsAndTheSplitAtOne) {
   EXPECT_NEAR(log_rv_approx<double>(1e-12), 1 / std::numbers::pi, 1e-9);  // a flat lobe: Lambert's 1/π
   const double below = log_rv_approx<double>(std::nextafter(1.0, 0.0)), above = log_rv_approx<double>(1.0);
   EXPECT_NEAR(below / above, 1, 2e-9);
-  EXPECT_NEAR(log_rv_approx<double>(1000), 197.49861008019521, 197.5 * 1e-9);  // MATH.md §4 check value
+  EXPECT_NEAR(log_rv_approx<double>(1000), 197.49861008019521, 197.5 * 1e-9);  // docs/math.md §4 check value
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Normalization: closed forms and quadrature against mpmath (tests/reference/normalization.csv),
-// against each other over sweeps of n, and against the paper's table (MATH.md §4).
+// against each other over sweeps of n, and against the paper's table (docs/math.md §4).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -62,7 +62,7 @@ TEST(NormalizeSweep, ClosedFormsAgreeWithQuadratureFrom1e3To1e9) {
 
 TEST(LogClosedForm, MathMdCheckValues) {
   EXPECT_LE(rel_diff(log_rv(1), 0.48274947790781993), 1e-15);
-  // MATH.md prints 197.49861008019521, one ulp above the correctly rounded value (mpmath:
+  // docs/math.md prints 197.49861008019521, one ulp above the correctly rounded value (mpmath:
   // 197.49861008019517899…).
   EXPECT_LE(rel_diff(log_rv(1000), 197.49861008019517899), 1e-15);
   EXPECT_NEAR(log_rv(1e9) / 1e9, 0.197254, 1e-6);  // coef ≈ 0.197254 n for large n
@@ -74,7 +74,7 @@ TEST(LogClosedForm, ThePapersTableToThreeDecimals) {
 }
 
 TEST(LogClosedForm, ThePapersFitUnderNormalizesAtLargeN) {
-  // Δ = coef_fit · 2π · Int − 1 ≈ −1.29e-3 at n = 1000 (MATH.md §4, the paper's Fig. 9).
+  // Δ = coef_fit · 2π · Int − 1 ≈ −1.29e-3 at n = 1000 (docs/math.md §4, the paper's Fig. 9).
   const double n = 1000;
   const double fit = 0.197 * (n + 1.24) + 0.068 / (0.64 + n);
   EXPECT_NEAR(fit / log_rv(n) - 1, -1.29e-3, 5e-6);
@@ -105,7 +105,7 @@ TEST(Coefficient, MethodsChooseAndRefuse) {
 }
 
 TEST(Coefficient, BlinnPhongApproximationIsTwoToEightPercentHigh) {
-  // MATH.md §2: (n+8)/(8π) vs Giesen's exact nh coefficient for n ∈ [1, 32].
+  // docs/math.md §2: (n+8)/(8π) vs Giesen's exact nh coefficient for n ∈ [1, 32].
   for (double n = 1; n <= 32; ++n) {
     const double excess = (n + 8) / (8 * std::numbers::pi) / blinn_phong_nh(n) - 1;
     EXPECT_GT(excess, 0.015) << n;

@@ -7,7 +7,7 @@ Regenerate (from the repository root; writes next to this script, about 80 s on 
 
 Requires python3 (>= 3.9) and mpmath (plus the standard library's decimal module). Deterministic:
 no randomness, every input is fixed in this file, and the output does not depend on --jobs
-(default: 2 worker processes). Definitions follow /work/shared/MATH.md (docs: "specula -- the
+(default: 2 worker processes). Definitions follow docs/math.md (docs: "specula -- the
 mathematics"), sections "1. Conventions", "2. Models" and "4. Exact normalization of the log lobe".
 
 File written (CSV, header line first, comma separated, no quoting):
@@ -40,7 +40,7 @@ Method B (the check; double precision, different code):
   The other frame of the two (rv lobes around H, nh lobes and full BRDFs around R, where the
   lobe is no longer a function of s: the phi integral is also split along its level curves),
   inner variable phi, and the BRDF evaluated from the vectors L, V by a separate implementation
-  of MATH.md section 2 in Python floats (1 - c from |R - V|^2 / 2 or sin^2(delta)/(1 + N.H), so
+  of docs/math.md section 2 in Python floats (1 - c from |R - V|^2 / 2 or sin^2(delta)/(1 + N.H), so
   that c^1000 and exp(-tan^2/alpha^2) keep full relative accuracy). Tanh-sinh in floats,
   refined until two successive levels agree to 1e-12.
 
@@ -140,7 +140,7 @@ def to_mp(x):
 # ---------------------------------------------------------------------------------------------
 
 def lobe_coef(model, n):
-    """k of MATH.md section 2 (log-normalized: coef(n) of section 4, E1 form, at 60 digits)."""
+    """k of docs/math.md section 2 (log-normalized: coef(n) of section 4, E1 form, at 60 digits)."""
     n = mpf(n)
     pi = mpmath.pi
     if model == "phong-normalized":

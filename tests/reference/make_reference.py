@@ -6,7 +6,7 @@ Regenerate (from the repository root; writes next to this script, ~tens of secon
     python3 tests/reference/make_reference.py
 
 Requires python3 (>= 3.9, for math.nextafter) and mpmath. Deterministic: no randomness,
-every input is fixed in this file. Definitions follow /work/shared/MATH.md (docs: "specula --
+every input is fixed in this file. Definitions follow docs/math.md (docs: "specula --
 the mathematics"), sections "1. Conventions", "2. Models", "3. The log lobe in t-space" and
 "4. Exact normalization of the log lobe".
 
@@ -24,7 +24,7 @@ Files written (CSV, header line first, comma separated, no quoting):
       Computed by mpmath.quad in u = -ln c with breakpoints 0, w, 4w, 16w, ... (w = ln2/n) and
       checked (assert, 1e-25 relative) against the closed forms for power rv/nh, schlick rv and
       log rv (E1 form), against an independent quadrature in c for n <= 1000, and against the
-      check values of MATH.md section 4.
+      check values of docs/math.md section 4.
 
   brdfs.csv          model,p1,p2,lx,ly,lz,vx,vy,vz,value
       Full BRDFs (ward, ward-duer, ward-gmd, cook-torrance-1982, cook-torrance, ggx, lambert)
@@ -80,7 +80,7 @@ def fout(x, fname):
 
 
 # ---------------------------------------------------------------------------------------------
-# Lobes as functions of the cosine c (MATH.md section 2). Evaluated at extra precision so that
+# Lobes as functions of the cosine c (docs/math.md section 2). Evaluated at extra precision so that
 # the 20 printed digits are exact even for the log lobe just above its cut-off.
 # ---------------------------------------------------------------------------------------------
 
@@ -179,7 +179,7 @@ def make_lobes():
     for lobe, n, s in combos:
         assert lobe_c(lobe, n, s, 1.0) == 1
         assert lobe_c(lobe, n, s, 0.0) == 0
-    for n in LOBE_NS:  # F_log - c^n = 1 - 1/2 log2(1+t) - 2^-t, n-independent (MATH.md section 3)
+    for n in LOBE_NS:  # F_log - c^n = 1 - 1/2 log2(1+t) - 2^-t, n-independent (docs/math.md section 3)
         c = 2.0 ** (-1.0 / n)
         if c > 0:
             with mp.workdps(110):
@@ -273,7 +273,7 @@ def integral_c(lobe, form, n, s):
 
 
 def closed_form_coef(lobe, form, n):
-    """Closed forms of MATH.md section 2 ("Known exact normalizations") and section 4, or None."""
+    """Closed forms of docs/math.md section 2 ("Known exact normalizations") and section 4, or None."""
     with mp.workdps(int(50 + 2 * max(0.0, math.log10(n))) + 10):
         nn = mpf(n)
         if lobe == "power" and form == "rv":
@@ -321,11 +321,11 @@ def make_normalization(log):
             if lobe == "log" and form == "rv":
                 for nv, want in [(1.0, "0.48274947790781993"), (1000.0, "197.49861008019521")]:
                     if n == nv:
-                        # The check values are 17-digit doubles; MATH.md's coef(1000) is one
+                        # The check values are 17-digit doubles; docs/math.md's coef(1000) is one
                         # ulp (1.6e-16 relative) above the correctly rounded double
                         # 197.4986100801952, so compare to 1e-15 relative.
                         rel = abs(coef / mpf(want) - 1)
-                        log("log rv check value coef(%r) = %s: MATH.md %s, relative difference %s"
+                        log("log rv check value coef(%r) = %s: docs/math.md %s, relative difference %s"
                             % (n, mpmath.nstr(coef, 20), want, mpmath.nstr(rel, 3)))
                         if not rel < mpf("1e-15"):
                             raise AssertionError("log rv check value n=%r: %s vs %s" % (n, coef, want))

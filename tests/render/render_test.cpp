@@ -24,7 +24,7 @@ constexpr double kPi = std::numbers::pi;
 // coef(20) of the log lobe in rv form, by mpmath (tests/reference/normalization.csv).
 constexpr double kLogCoef20 = 4.1927561168511793081;
 
-// The hand-made side: camera rays, the textbook ray/sphere quadratic, the lobes of MATH.md §2.
+// The hand-made side: camera rays, the textbook ray/sphere quadratic, the lobes of docs/math.md §2.
 Vec3 unit(const Vec3& v) { return v * (1 / std::sqrt(dot(v, v))); }
 
 Ray pixel_ray(const Camera& c, int x, int y, int width, int height) {
@@ -124,7 +124,7 @@ INSTANTIATE_TEST_SUITE_P(Lobes, AnalyticShading,
                          ::testing::Values(std::pair{"phong-normalized", Lobe{20, 22 / (2 * kPi), false}},
                                            std::pair{"log-normalized", Lobe{20, kLogCoef20, true}}));
 
-// Energy. A BRDF conserves energy when its albedo ρ(V) = ∫ f(L, V) cos θ_L dω_L ≤ 1 (MATH.md §1;
+// Energy. A BRDF conserves energy when its albedo ρ(V) = ∫ f(L, V) cos θ_L dω_L ≤ 1 (docs/math.md §1;
 // by reciprocity the integral may run over L). Light the sphere from every direction with equal
 // radiance L_env = 1 — a "white furnace": M directional lights on a Fibonacci sphere, each with
 // E = 4π/M, turn the shading sum into a quadrature of that integral, so each pixel shows

@@ -162,11 +162,11 @@ TEST_F(BeyondThePaperTest, EnergyTableGivesEachModelItsVerdict) {
   const auto log = row(energy, {"log-normalized", "rv", "rv"});
   ASSERT_EQ(log.size(), 9u);
   EXPECT_EQ(log[8].rfind("conserves", 0), 0u) << log[8];
-  EXPECT_EQ(log[3], "1");  // ρ(0°) = 1 to the 6 digits shown: the exact coefficient, MATH.md §4
+  EXPECT_EQ(log[3], "1");  // ρ(0°) = 1 to the 6 digits shown: the exact coefficient, docs/math.md §4
   const auto ct = row(energy, {"cook-torrance-1982", "—", "—"});
   ASSERT_EQ(ct.size(), 9u);
   EXPECT_EQ(ct[8].rfind("gains energy (max ρ = ", 0), 0u) << ct[8];
-  EXPECT_GT(std::stod(ct[4]), 3.9);  // about 4× (MATH.md §2)
+  EXPECT_GT(std::stod(ct[4]), 3.9);  // about 4× (docs/math.md §2)
   for (const auto& info : models())
     EXPECT_FALSE(row(energy, {std::string(info.id), info.kind == ModelKind::lobe ? to_string(info.form) : "—"}).empty())
         << info.id;
@@ -177,7 +177,7 @@ TEST_F(BeyondThePaperTest, AlbedosMatchClosedForms) {
   const double n = 20;
   // Lafortune's k = (n + 1)/(2π) on Phong's exactly normalized lobe: ρ(0°) = (n + 1)/(n + 2).
   EXPECT_EQ(row(energy, {"phong-lafortune", "rv", "rv"})[3], fmt::format("{:.6g}", (n + 1) / (n + 2)));
-  // Phong's rv k used in nh: ρ(0°) = k_rv / k_nh, both closed forms (MATH.md §2).
+  // Phong's rv k used in nh: ρ(0°) = k_rv / k_nh, both closed forms (docs/math.md §2).
   const double phong_in_nh = normalize::phong_rv(n) / normalize::blinn_phong_nh(n);
   EXPECT_EQ(row(energy, {"phong-normalized", "nh", "rv"})[3], fmt::format("{:.6g}", phong_in_nh));
   // Lambert's ρ is its albedo at every angle.
@@ -231,7 +231,7 @@ TEST_F(BeyondThePaperTest, CostTableListsEveryModel) {
     ASSERT_EQ(cells.size(), 5u) << info.id;
     EXPECT_GT(std::stod(cells[3]), 0) << info.id;  // a time, never asserted beyond being one
   }
-  // The log lobe's largest |F − cⁿ| is 1/8 for every n (MATH.md §3); Phong's own lobe is exact.
+  // The log lobe's largest |F − cⁿ| is 1/8 for every n (docs/math.md §3); Phong's own lobe is exact.
   EXPECT_EQ(row(cost, {"log-normalized", "lobe"})[4], "0.125");
   EXPECT_EQ(row(cost, {"phong", "lobe"})[4], "0");
   EXPECT_EQ(row(cost, {"ggx", "brdf"})[4], "—");

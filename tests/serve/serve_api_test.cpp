@@ -77,7 +77,7 @@ TEST_F(ServeApi, NormalizeGivesTheLibrarysCoefficients) {
   const auto coef = column(t, "coef");
   ASSERT_EQ(coef.size(), 4u);
   EXPECT_NEAR(coef[0], 0.48274947790781993, 1e-15);
-  EXPECT_NEAR(coef[3], 197.49861008019521, 197.5 * 1e-14);  // MATH.md §4
+  EXPECT_NEAR(coef[3], 197.49861008019521, 197.5 * 1e-14);  // docs/math.md §4
   const std::vector<double> n{1, 2, 5, 1000};
   for (std::size_t i = 0; i < n.size(); ++i) {
     const Model m = make_model("log", {{"n", n[i]}});
@@ -153,7 +153,7 @@ TEST_F(ServeApi, ErrorGivesTheExactMaxima) {
   const json t = ok("/api/error", {{"model", "log"}, {"reference", "phong"}, {"n", {1, 20, 1000}}});
   const auto direct = analysis::approximation_error(make_model("log", {{"n", 20}}).lobe(), make_model("phong", {{"n", 20}}).lobe());
   EXPECT_EQ(column(t, "max_abs")[1], direct.max_abs);
-  for (const double e : column(t, "max_abs")) EXPECT_NEAR(e, 0.125, 1e-12);  // MATH.md §3
+  for (const double e : column(t, "max_abs")) EXPECT_NEAR(e, 0.125, 1e-12);  // docs/math.md §3
 }
 
 TEST_F(ServeApi, GlslGivesTheModelsFunctionAndHowToCallIt) {
@@ -220,6 +220,8 @@ INSTANTIATE_TEST_SUITE_P(
         // malformed or mistyped bodies
         BadRequest{"malformed JSON", "/api/normalize", R"({"model": "log", "n": [1, 2)", 400, "body"},
         BadRequest{"empty body", "/api/normalize", "", 400, "body"},
+        BadRequest{"a NUL byte after the object", "/api/normalize", std::string(R"({"model": "log"})") + '\0' + "junk", 400, "body"},
+        BadRequest{"a NUL byte alone after the object", "/api/albedo", std::string(R"({"model": "log"})") + '\0', 400, "body"},
         BadRequest{"an array body", "/api/normalize", "[1, 2]", 400, "body"},
         BadRequest{"NaN literal", "/api/eval", R"({"model": "log", "cos": [NaN]})", 400, "body"},
         BadRequest{"model not a string", "/api/normalize", R"({"model": 3})", 400, "model"},

@@ -1,6 +1,6 @@
 // The SIMD batch lobes against the scalar double lobes, held to exactly the bounds that
 // include/specula/simd/lobes.h states (error_bound), on every instruction set this CPU runs:
-// dense and random cosines, cosines dense in t = −n log₂ c (the log lobe's own variable, MATH.md
+// dense and random cosines, cosines dense in t = −n log₂ c (the log lobe's own variable, docs/math.md
 // §3) and in the angle (Gauss), powers of two down to the subnormals, and the edge cases.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Directional albedo ρ(θ_i) = ∫_{H²} f(L, V) (N·V) dω_V (MATH.md §1), by deterministic adaptive
+// Directional albedo ρ(θ_i) = ∫_{H²} f(L, V) (N·V) dω_V (docs/math.md §1), by deterministic adaptive
 // cubature that stays accurate for narrow lobes (n up to 1e4 and beyond, roughness down to 0.01),
 // compact supports and grazing incidence: ≥ 8 significant digits where ρ ≥ 1e-3.
 //   - lobes in `rv` form: one integral over the angle α from R; the azimuthal integral of N·V

@@ -1,5 +1,5 @@
 #pragma once
-// Energy conservation, reciprocity and non-negativity of a model (MATH.md §1), and the strict
+// Energy conservation, reciprocity and non-negativity of a model (docs/math.md §1), and the strict
 // normalization that the energy check makes possible.
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// How well one lobe approximates another (MATH.md §3; the paper's Figs. 3 and 4): the maximum
+// How well one lobe approximates another (docs/math.md §3; the paper's Figs. 3 and 4): the maximum
 // absolute error, where it occurs, and the maximum relative error inside the "epicenter" (where
 // the reference is ≥ zone × its peak) and outside it (the attenuation zone, while the reference
 // is > 0). Maxima are found exactly, not read off a grid: dense sampling in u = −ln c scaled to

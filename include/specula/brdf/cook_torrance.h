@@ -1,5 +1,5 @@
 #pragma once
-// Cook-Torrance microfacet BRDFs with the Beckmann distribution (MATH.md §2).
+// Cook-Torrance microfacet BRDFs with the Beckmann distribution (docs/math.md §2).
 #include "specula/brdf/directions.h"
 #include "specula/brdf/microfacet.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Directions of MATH.md §1: R = 2(N·L)N − L, H = (L + V)/|L + V|, and unit vectors from angles.
+// Directions of docs/math.md §1: R = 2(N·L)N − L, H = (L + V)/|L + V|, and unit vectors from angles.
 #include "specula/brdf/vec3.h"
 
 namespace specula {

@@ -1,6 +1,6 @@
 #pragma once
 // GGX: Trowbridge-Reitz D, Smith height-correlated masking-shadowing, Schlick Fresnel
-// (Walter et al. 2007; Heitz 2014, eq. 99 for G₂). MATH.md §2 `ggx`.
+// (Walter et al. 2007; Heitz 2014, eq. 99 for G₂). docs/math.md §2 `ggx`.
 #include "specula/brdf/directions.h"
 #include "specula/brdf/microfacet.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Lambert's diffuser (MATH.md §1: the analytic reference, ρ(θ_i) = ρ for every θ_i).
+// Lambert's diffuser (docs/math.md §1: the analytic reference, ρ(θ_i) = ρ for every θ_i).
 #include <numbers>
 
 #include "specula/brdf/vec3.h"

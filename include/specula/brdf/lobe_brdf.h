@@ -1,5 +1,5 @@
 #pragma once
-// A lobe used as a BRDF: f = k·F(R·V) in `rv` form, f = k·F(N·H) in `nh` form (MATH.md §1).
+// A lobe used as a BRDF: f = k·F(R·V) in `rv` form, f = k·F(N·H) in `nh` form (docs/math.md §1).
 #include "specula/brdf/directions.h"
 #include "specula/lobes/lobe.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Shared pieces of microfacet BRDFs (MATH.md §2, "Cook-Torrance parts").
+// Shared pieces of microfacet BRDFs (docs/math.md §2, "Cook-Torrance parts").
 #include <algorithm>
 
 #include "specula/brdf/vec3.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Ward's anisotropic-Gaussian BRDF in its isotropic form, and the two later normalizations
-// (MATH.md §2 `ward`).
+// (docs/math.md §2 `ward`).
 #include "specula/brdf/microfacet.h"
 
 namespace specula {

@@ -1,5 +1,5 @@
 #pragma once
-// GLSL for every specula model (the paper's Fig. 10, for all of MATH.md §2): self-contained
+// GLSL for every specula model (the paper's Fig. 10, for all of docs/math.md §2): self-contained
 // functions that compute, in float, what the C++ Model computes, with the exact normalization
 // evaluated in the shader. Each emitted function's first line cites its source, as Filament's
 // surface_brdf.fs does.
@@ -32,7 +32,7 @@ std::string version_header(Dialect dialect);
 /// from the model's own (Model::with_coef) are baked in. Lobe models return k·F(c) without testing
 /// N·L, as Model does; full BRDFs return 0 below the horizon, as theirs do.
 ///
-/// Accuracy: float arithmetic on the formulas of MATH.md §2; the log lobe's coef(n) from
+/// Accuracy: float arithmetic on the formulas of docs/math.md §2; the log lobe's coef(n) from
 /// normalize::log_rv_approx's Chebyshev series (4e-7 relative for n ∈ (0, 1e30]); Schlick's k
 /// by its closed form, or by a 24-term series in 1 − n where that form cancels (|1 − n| ≤ ½).
 std::string model_glsl(const Model& model);

@@ -2,7 +2,7 @@
 // The GLSL scene shader: what render_cpu computes per pixel (include/specula/render/render.h),
 // as a full-screen fragment shader. One primary ray through the pixel centre, spheres and a
 // triangle mesh (its BVH in float textures), directional and point lights, shadow rays where the
-// CPU casts them, MATH.md §5's local shading with any model's specula_brdf (gl/glsl.h), and
+// CPU casts them, docs/math.md §5's local shading with any model's specula_brdf (gl/glsl.h), and
 // optionally the display transform of render/image.h. No GL dependency: the strings and the
 // values of the uniforms and textures are made here; specula_gl (gl/render_gl.h) runs them.
 #include <array>

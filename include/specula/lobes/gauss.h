@@ -1,6 +1,6 @@
 #pragma once
 // F = exp(−n θ²/2), θ = acos c: the Gaussian lobe matched to c^n at the peak, since
-// ln cos θ ≈ −θ²/2 (MATH.md §2 `gauss`; the paper's Gauss BRDF, used with c = N·H).
+// ln cos θ ≈ −θ²/2 (docs/math.md §2 `gauss`; the paper's Gauss BRDF, used with c = N·H).
 #include "specula/lobes/lobe.h"
 
 namespace specula::lobes {

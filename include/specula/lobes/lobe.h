@@ -1,5 +1,5 @@
 #pragma once
-// What every lobe shares: the cosine convention and the two forms (MATH.md §1 "Conventions").
+// What every lobe shares: the cosine convention and the two forms (docs/math.md §1 "Conventions").
 //
 // A lobe is F(c) of one cosine c ∈ [0, 1] with F(1) = 1. Every lobe family is a small struct
 // holding its parameters, templated on float or double, with

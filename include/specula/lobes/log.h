@@ -1,7 +1,7 @@
 #pragma once
 // The paper's lobe: F_log = max(0, 1 − ½ log₂(1 − n log₂ c)) (Romanyuk et al. 2023, eq. for
-// F_log; MATH.md §2 `log`). Zero for c ≤ c₀ = 2^(−3/n). In t = −n log₂ c it is
-// 1 − ½ log₂(1 + t) on t ∈ [0, 3], independent of n (MATH.md §3).
+// F_log; docs/math.md §2 `log`). Zero for c ≤ c₀ = 2^(−3/n). In t = −n log₂ c it is
+// 1 − ½ log₂(1 + t) on t ∈ [0, 3], independent of n (docs/math.md §3).
 #include "specula/lobes/lobe.h"
 
 namespace specula::lobes {

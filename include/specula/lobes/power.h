@@ -1,5 +1,5 @@
 #pragma once
-// F = c^n: Phong's lobe (Phong 1975), Blinn's when c = N·H (MATH.md §2 `phong`).
+// F = c^n: Phong's lobe (Phong 1975), Blinn's when c = N·H (docs/math.md §2 `phong`).
 #include "specula/lobes/lobe.h"
 
 namespace specula::lobes {

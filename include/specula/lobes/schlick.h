@@ -1,5 +1,5 @@
 #pragma once
-// Schlick's rational approximations of c^n (MATH.md §2 `schlick`, `schlick-modified`).
+// Schlick's rational approximations of c^n (docs/math.md §2 `schlick`, `schlick-modified`).
 #include "specula/lobes/lobe.h"
 
 namespace specula::lobes {
@@ -20,7 +20,7 @@ struct Schlick {
   T support_log_cos() const noexcept { return kInfinity<T>; }
 };
 
-/// F = (s c)² / (n − n c + s c)² (MATH.md §2 `schlick-modified`, reconstructed: the paper's
+/// F = (s c)² / (n − n c + s c)² (docs/math.md §2 `schlick-modified`, reconstructed: the paper's
 /// "second degree" Schlick lobe). s = 1.25 in the paper.
 template <std::floating_point T = double>
 struct SchlickModified {

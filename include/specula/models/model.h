@@ -1,5 +1,5 @@
 #pragma once
-// The model catalogue (MATH.md §2): every model with its id, parameters, default form and
+// The model catalogue (docs/math.md §2): every model with its id, parameters, default form and
 // normalization, and `Model`, a model with its parameter values bound, ready to evaluate.
 #include <map>
 #include <optional>

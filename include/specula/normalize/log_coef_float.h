@@ -1,5 +1,5 @@
 #pragma once
-// The log lobe's exact normalization coef(n) (MATH.md §4) for float shaders: two Chebyshev
+// The log lobe's exact normalization coef(n) (docs/math.md §4) for float shaders: two Chebyshev
 // series fitted by scripts/make_log_coef_fit.py, evaluated in float by Clenshaw's recurrence.
 // This is the arithmetic the emitted GLSL (gl/glsl.h, specula_log_coef) performs, so the test of
 // this function states the shader's error too.

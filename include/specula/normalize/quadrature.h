@@ -1,5 +1,5 @@
 #pragma once
-// Numerical normalization of any lobe in either form (MATH.md §3: integrate in a variable
+// Numerical normalization of any lobe in either form (docs/math.md §3: integrate in a variable
 // suited to narrow lobes). The integral runs over u = −ln c, split at u = w·4^j where w is
 // the lobe's half-maximum width, with adaptive Gauss-Kronrod (31 points) on each piece:
 //   rv: ρ₁(0) = 2π ∫₀^∞ F(u) e^(−2u) du           (truncated at u = 40: e^(−80) is below 1e-34)

@@ -1,5 +1,5 @@
 #pragma once
-// Comparison panels (the paper's Fig. 11, MATH.md §5): already-rendered linear images side by
+// Comparison panels (the paper's Fig. 11, docs/math.md §5): already-rendered linear images side by
 // side, each with a one-line label, and optionally a second row of difference heat maps against a
 // reference image, on one shared scale shown by a colour bar. Renderer-agnostic: it takes images
 // and labels and composes an 8-bit sRGB picture; it does not render.

@@ -1,5 +1,5 @@
 #pragma once
-// The CPU renderer: one primary ray through each pixel centre, local shading (MATH.md §5,
+// The CPU renderer: one primary ray through each pixel centre, local shading (docs/math.md §5,
 // Figs. 10-11), shadow rays where the scene can shadow itself.
 #include "specula/render/image.h"
 #include "specula/render/scene.h"

@@ -1,5 +1,5 @@
 #pragma once
-// What a frame shows (MATH.md §5, Figs. 10-11): spheres and triangle meshes, a pinhole camera,
+// What a frame shows (docs/math.md §5, Figs. 10-11): spheres and triangle meshes, a pinhole camera,
 // directional and point lights, and one material whose specular part is any specula Model.
 #include <array>
 #include <filesystem>
@@ -68,7 +68,7 @@ Light parse_light(std::string_view spec);
 /// The spec parse_light reads back, e.g. "dir:-1,1,1:1,1,1:1".
 std::string to_string(const Light& light);
 
-/// Lambert diffuse + the model's specular lobe + ambient (MATH.md §5):
+/// Lambert diffuse + the model's specular lobe + ambient (docs/math.md §5):
 /// L_o = ambient·diffuse + Σ_lights (diffuse/π + specular·f(N, L, V)) · E · max(0, N·L).
 struct Material {
   explicit Material(Model specular_model) : model(std::move(specular_model)) {}
