@@ -12,6 +12,7 @@
 //     accepts must not fail later in the job.
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -95,9 +96,13 @@ void follow_fit(serve::Api& api, const serve::Response& started) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  // SPECULA_FUZZ_SERVE_NO_FIT=1 leaves /api/fit out: while a known fit hang is open (see
+  // docs/fuzzing.md) a campaign with it rediscovers that hang instead of exploring the rest.
+  static const bool no_fit = std::getenv("SPECULA_FUZZ_SERVE_NO_FIT") != nullptr;
   const std::string body(fuzz::text_of(data, size));
   serve::Api api(tight_limits());  // per input: no fit job outlives it (its destructor waits)
   for (const std::string_view route : kRoutes) {
+    if (no_fit && route == "/api/fit") continue;
     const auto r = handled(api, {"POST", std::string(route), body});
     if (route == "/api/fit" && r.status == 202) follow_fit(api, r);
   }
