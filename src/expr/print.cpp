@@ -94,10 +94,20 @@ std::optional<Fragment> common(const Node& node, Operands operands, const Expres
   }
 }
 
+// A negation of a negation reads "- -x": "-(-x)" nests two levels deeper per sign than the "--x"
+// it may have been parsed from, so a text parse() accepted near kMaxNesting would not read back.
+Fragment infix_negation(const Fragment& operand) {
+  if (operand.precedence != kNegation) return negation(operand);
+  std::string text("- ");
+  text += operand.text;
+  return {std::move(text), kNegation};
+}
+
 Fragment infix_node(const Node& node, Operands operands, const Expression& e) {
   if (node.op == Op::constant)
     return signed_number(node.value, shortest(std::abs(node.value), false));
   if (node.op == Op::pow) return infix(operands, "^", kPower);
+  if (node.op == Op::neg) return infix_negation(operands[0]);
   if (auto done = common(node, operands, e)) return *done;
   return call(function_name(node.op), operands);
 }

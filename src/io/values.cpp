@@ -1,5 +1,6 @@
 #include "specula/io/values.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -20,11 +21,33 @@ void check_count(std::string_view item, double count, std::size_t already, std::
     malformed(item, fmt::format("more than {} values", max_values));
 }
 
+// The steps from a to b, (b − a) / step, also where b − a overflows (a and b of opposite signs
+// near the ends of the range of a double: -1e308:1e308:1e308 is 3 values).
+double steps_between(double a, double b, double step) {
+  const double span = b - a;
+  return std::isfinite(span) ? span / step : b / step - a / step;
+}
+
+// The value a fraction f of the way from a to b: a + (b − a)·f, or a·(1 − f) + b·f where b − a
+// overflows (-1e308:1e308@3 would otherwise start with inf·0 = nan).
+double linear_at(double a, double b, double f) {
+  const double span = b - a;
+  return std::isfinite(span) ? a + span * f : a * (1 - f) + b * f;
+}
+
+// The same on a log scale (a, b > 0): a·(b/a)^f, or a^(1−f)·b^f where b/a overflows or underflows
+// (1e-300:1e300@3:log would otherwise give inf in the middle), kept within [a, b].
+double log_at(double a, double b, double f) {
+  const double ratio = b / a;
+  if (std::isfinite(ratio) && ratio > 0) return a * std::pow(ratio, f);
+  return std::clamp(std::pow(a, 1 - f) * std::pow(b, f), std::min(a, b), std::max(a, b));
+}
+
 void append_stepped(std::string_view item, double a, double b, double step, std::size_t max_values,
                     std::vector<double>& out) {
   if (!(step > 0)) malformed(item, "the step must be > 0");
   if (b < a) malformed(item, "the end is below the start");
-  const double count = std::floor((b - a) / step * (1 + 1e-12)) + 1;
+  const double count = std::floor(steps_between(a, b, step) * (1 + 1e-12)) + 1;
   check_count(item, count, out.size(), max_values);
   for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)  // ≤ b; b itself despite round-off
     out.push_back(std::abs(b - (a + step * i)) <= 1e-9 * step ? b : std::min(b, a + step * i));
@@ -44,7 +67,7 @@ void append_counted(std::string_view item, double a, double b, std::string_view 
   for (std::size_t i = 0; i < n; ++i) {
     const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
     if (i + 1 == n && n > 1) out.push_back(b);  // the end exactly, free of round-off
-    else out.push_back(log ? a * std::pow(b / a, f) : a + (b - a) * f);
+    else out.push_back(log ? log_at(a, b, f) : linear_at(a, b, f));
   }
 }
 

@@ -3,8 +3,12 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "specula/brdf/directions.h"
@@ -29,6 +33,30 @@ bool valid_colour(const Rgb& c) noexcept {
 std::string_view first_line(std::string_view text) {
   text = text.substr(0, text.find('\n'));
   return text.empty() ? "unreadable OBJ" : text;
+}
+
+// The statements load_obj uses, v, vn, vt and f, with every other line left blank (so that
+// tinyobjloader's line numbers stay those of the file). What tinyobjloader would parse only for
+// load_obj to ignore never reaches it: its `vw` (skin weight) parser converts a joint id to int
+// unchecked, undefined behaviour for `vw 1 1e39 0` (found by fuzz/obj_fuzz.cpp, now in
+// fuzz/corpus/obj/), and `mtllib` would open whatever file the OBJ names. Lines end at LF, CR or
+// CRLF and a statement's keyword is followed by a space or tab, as tinyobjloader reads them.
+std::string used_statements(std::string_view text) {
+  std::string used;
+  used.reserve(text.size());
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find_first_of("\r\n", start), text.size());
+    const std::string_view line = text.substr(start, end - start);
+    const std::size_t first = std::min(line.find_first_not_of(" \t"), line.size());
+    const std::string_view statement = line.substr(first);
+    const std::size_t keyword_end = statement.find_first_of(" \t");
+    const std::string_view keyword = statement.substr(0, keyword_end);
+    if (keyword_end != std::string_view::npos && (keyword == "v" || keyword == "vn" || keyword == "vt" || keyword == "f"))
+      used += line;
+    used += '\n';
+    start = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
+  }
+  return used;
 }
 
 Vec3 obj_vertex(const std::filesystem::path& path, const std::vector<tinyobj::real_t>& values, int index,
@@ -106,7 +134,7 @@ std::vector<Triangle> load_obj(const std::filesystem::path& path) {
   tinyobj::ObjReaderConfig config;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, "", config)) cannot_read(path, first_line(reader.Error()));
+  if (!reader.ParseFromString(used_statements(text), "", config)) cannot_read(path, first_line(reader.Error()));
   std::vector<Triangle> triangles;
   for (const auto& shape : reader.GetShapes()) {
     std::size_t offset = 0;

@@ -39,9 +39,23 @@ TEST(ToInfix, MinimalParentheses) {
   EXPECT_EQ(infix("x ^ (-y)"), "x ^ -y");
   EXPECT_EQ(infix("x * (-y)"), "x * -y");
   EXPECT_EQ(infix("-(x * y)"), "-(x * y)");
-  EXPECT_EQ(infix("-(-x)"), "-(-x)");
+  EXPECT_EQ(infix("-(-x)"), "- -x");  // not -(-x): that nests deeper than the --x it may come from
+  EXPECT_EQ(infix("--x"), "- -x");
   EXPECT_EQ(infix("log((x + 1))"), "log(x + 1)");
   EXPECT_EQ(infix("max(x, y) - min(1, y)"), "max(x, y) - min(1, y)");
+}
+
+// Found by fuzz/expr_fuzz.cpp (fuzz/corpus/expr/nesting_limit_negation): 999 signs printed as
+// -(-(-…)) nested twice as deep as parse() allows.
+TEST(ToInfix, ReadsBackAtTheNestingLimit) {
+  const int signs = kMaxNesting - 1;
+  for (const std::string& text : {std::string(signs, '-') + "x", "x ^ " + std::string(signs - 1, '-') + "y"}) {
+    const Expression e = parse(text);
+    Expression again = e;
+    ASSERT_NO_THROW(again = parse(to_infix(e))) << text.substr(0, 20);
+    EXPECT_EQ(to_infix(again), to_infix(e));
+    EXPECT_EQ(evaluate(again, std::vector<double>{2, 3}), evaluate(e, std::vector<double>{2, 3}));
+  }
 }
 
 TEST(ToInfix, NegativeConstants) {

@@ -254,6 +254,21 @@ TEST(ParseValues, MoreThanMaxValuesThrows) {
   EXPECT_THAT(message, HasSubstr(fmt::format("{}", max)));
 }
 
+// Found by fuzz/values_fuzz.cpp (fuzz/corpus/values/wide_count, wide_count_log): where b − a or
+// b / a overflows, the ends of the range of a double still give finite values, and a step range
+// across it is counted, not refused as too many.
+TEST(ParseValues, RangesAcrossTheWholeRangeOfADoubleStayFinite) {
+  EXPECT_EQ(parse_values("-1e308:1e308@3"), (std::vector<double>{-1e308, 0, 1e308}));
+  EXPECT_EQ(parse_values("-1e308:1e308:1e308"), (std::vector<double>{-1e308, 0, 1e308}));
+  const auto log = parse_values("1e-300:1e300@3:log");
+  ASSERT_EQ(log.size(), 3u);
+  EXPECT_EQ(log[0], 1e-300);
+  EXPECT_NEAR(log[1], 1, 1e-12);
+  EXPECT_EQ(log[2], 1e300);
+  const auto down = parse_values("1e300:1e-300@5:log");
+  for (const double v : down) EXPECT_TRUE(std::isfinite(v) && v >= 1e-300 && v <= 1e300) << v;
+}
+
 TEST(ParseValues, ThrowsTheLibrarysOwnException) {
   EXPECT_THROW((void)parse_values("1:"), InvalidArgument);
   EXPECT_THROW((void)parse_values("nan"), InvalidArgument);

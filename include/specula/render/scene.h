@@ -31,8 +31,9 @@ struct Triangle {
   bool has_normals = false;
 };
 
-/// Every face of a Wavefront OBJ file, polygons split into triangle fans (tinyobjloader); the
-/// .mtl, texture coordinates and groups are ignored. Throws InvalidArgument ("cannot read …")
+/// Every face of a Wavefront OBJ file, polygons split into triangle fans (tinyobjloader); only
+/// the v, vn, vt and f statements are read: materials (no .mtl is opened), texture coordinates,
+/// groups, lines, points and skin weights are ignored. Throws InvalidArgument ("cannot read …")
 /// for a missing or unreadable file, an index out of range, or a file with no triangle.
 std::vector<Triangle> load_obj(const std::filesystem::path& path);
 
