@@ -96,8 +96,8 @@ void follow_fit(serve::Api& api, const serve::Response& started) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  // SPECULA_FUZZ_SERVE_NO_FIT=1 leaves /api/fit out: while a known fit hang is open (see
-  // docs/fuzzing.md) a campaign with it rediscovers that hang instead of exploring the rest.
+  // SPECULA_FUZZ_SERVE_NO_FIT=1 leaves /api/fit out, to spend a campaign on the other routes
+  // (each fit input costs milliseconds of search).
   static const bool no_fit = std::getenv("SPECULA_FUZZ_SERVE_NO_FIT") != nullptr;
   const std::string body(fuzz::text_of(data, size));
   serve::Api api(tight_limits());  // per input: no fit job outlives it (its destructor waits)

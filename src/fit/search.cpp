@@ -475,9 +475,12 @@ class Search {
     std::vector<Individual> fitted(forms.size());
     for (std::size_t first = 0; first < forms.size() && !stopped(); first += kEnumerationChunk) {
       const std::size_t last = std::min(forms.size(), first + kEnumerationChunk);
+      // The first chunk is always fitted whole, so that even a search stopped at once has a
+      // front to report; later chunks stop at the budget form by form.
+      const bool first_chunk = first == 0;
       arena_.execute([&] {
         oneapi::tbb::parallel_for(first, last, [&](std::size_t i) {
-          if (!budget_.expired()) fitted[i] = fit_form(problem_, forms[i]);
+          if (first_chunk || !budget_.expired()) fitted[i] = fit_form(problem_, forms[i]);
         });
       });
       for (std::size_t i = first; i < last; ++i) archive_.offer(fitted[i]);

@@ -80,8 +80,9 @@ struct Material {
   Rgb ambient{0.03, 0.03, 0.03}; ///< ambient radiance, reflected as ambient·diffuse
 };
 
-/// The most lights a scene may have (each costs one more lobe evaluation per pixel).
-inline constexpr std::size_t kMaxLights = 64;
+/// The most lights a scene may have (each costs one more lobe evaluation per pixel; 4096
+/// directional lights make a furnace-like environment).
+inline constexpr std::size_t kMaxLights = 4096;
 
 struct Scene {
   Camera camera;
