@@ -397,6 +397,10 @@ struct Server::Impl {
         return;
       }
       if (!res.body.empty()) return;
+      // httplib's own refusals (400 unparsable request line or headers, 414, …) leave the rest of
+      // the request unread: the connection closes, or that rest would be read as another request
+      // and answered a second time.
+      if (current_connection) current_connection->close_after = true;
       reply(error_response(res.status, status_message(res.status)), res);
     });
     http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
