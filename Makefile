@@ -30,7 +30,7 @@ bench: build
 	@build/release/bench/specula_render_bench
 
 # The hostile test (bench/hostile): the release CLI and `specula serve` on loopback against
-# malformed input, kills, signals and slow or heavy clients; bounded (about 6 minutes), exit 1 on
+# malformed input, kills, signals and slow or heavy clients; bounded (about 2 minutes), exit 1 on
 # any fault. docs/robustness.md states the rules it checks.
 hostile: build
 	@python3 bench/hostile/run.py --specula build/release/specula
