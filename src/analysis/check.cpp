@@ -47,10 +47,7 @@ MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<doub
   // An interior maximum is refined; one at the grid's last point (89.9°) is the supremum's
   // approach to grazing, reported there. ρ is even in θ_i, so at 0° it is stationary: a maximum
   // there unless ρ rises within the first step.
-  auto rho_at = [&](double deg) {
-    check_interrupt();  // each probe of the refinement is a whole albedo integral
-    return albedo(model, deg * kDegree).value;
-  };
+  auto rho_at = [&](double deg) { return albedo(model, deg * kDegree).value; };
   const bool stationary_at_normal = best == 0 && rho_at(step_deg / 16) <= rho[0];
   if (best + 1 < degrees.size() && !stationary_at_normal) {
     const double lo = degrees[best == 0 ? 0 : best - 1], hi = degrees[best + 1];

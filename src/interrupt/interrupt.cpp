@@ -36,13 +36,6 @@ ScopedLimit::ScopedLimit(const WorkLimit& limit) noexcept : previous_(thread_lim
 
 ScopedLimit::~ScopedLimit() { thread_limit = previous_; }
 
-bool interrupted() noexcept {
-  if (stop_requested()) return true;
-  if (thread_limit.cancel && thread_limit.cancel->load(std::memory_order_relaxed)) return true;
-  return thread_limit.deadline != std::chrono::steady_clock::time_point::max() &&
-         std::chrono::steady_clock::now() >= thread_limit.deadline;
-}
-
 void check_interrupt() {
   if (const int signal = stop_requested()) throw Interrupted(Interrupted::Reason::signal, signal);
   if (thread_limit.cancel && thread_limit.cancel->load(std::memory_order_relaxed))

@@ -69,9 +69,8 @@ auto carry_limit(const F& f) {
   };
 }
 
-/// Whether a stop was requested, the thread's deadline passed or its cancel flag is set.
-bool interrupted() noexcept;
-/// Throws Interrupted when interrupted() would be true.
+/// Throws Interrupted when a stop was requested, the thread's cancel flag is set or its deadline
+/// has passed (in that order).
 void check_interrupt();
 
 }  // namespace specula
