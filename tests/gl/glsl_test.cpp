@@ -20,13 +20,16 @@ namespace {
 
 constexpr Dialect kDialects[] = {Dialect::glsl330, Dialect::gles300, Dialect::webgl2};
 
-/// A fragment shader that calls the model's entry point with its parameters as a uniform.
-std::string test_shader(const Model& model, Dialect dialect) {
-  return version_header(dialect) + model_glsl(model) +
+/// A fragment shader that calls the entry point of `model_text` (a model's GLSL) with its
+/// parameters as a uniform.
+std::string test_shader(const std::string& model_text, Dialect dialect) {
+  return version_header(dialect) + model_text +
          "uniform vec4 u_params;\nout vec4 colour;\n"
          "void main() {\n  vec3 N = vec3(0.0, 0.0, 1.0), L = normalize(vec3(1.0, 0.0, 1.0));\n"
          "  colour = vec4(specula_brdf(N, L, normalize(vec3(-1.0, 0.2, 1.0)), u_params));\n}\n";
 }
+
+std::string test_shader(const Model& model, Dialect dialect) { return test_shader(model_glsl(model), dialect); }
 
 TEST(Glsl, EveryModelCompilesInEveryDialect) {
   for (const auto& info : models())
@@ -37,6 +40,28 @@ TEST(Glsl, EveryModelCompilesInEveryDialect) {
         const auto check = testing::validate_glsl(test_shader(model, dialect), "frag");
         EXPECT_TRUE(check.ok) << info.id << " " << to_string(dialect) << "\n" << check.log;
       }
+}
+
+// The negative control of EveryModelCompilesInEveryDialect: the same check fails for a model
+// whose GLSL is missing, is another model's, or calls a function nothing defines.
+TEST(Glsl, TheEveryModelCheckFailsForAModelWithoutItsGlsl) {
+  const std::string bogus =
+      "// no source\nfloat specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params) {\n  return specula_nothing(N, params.x);\n}\n";
+  const std::string ggx = model_glsl(make_model("ggx"));
+  const std::string without_its_lobe = std::regex_replace(
+      model_glsl(make_model("log")), std::regex("float specula_log_lobe[^}]*\\}"), "");
+  for (const std::string& text : {std::string(), bogus, without_its_lobe})
+    EXPECT_FALSE(testing::validate_glsl(test_shader(text, Dialect::glsl330), "frag").ok) << text;
+  EXPECT_TRUE(testing::validate_glsl(test_shader(ggx, Dialect::glsl330), "frag").ok);
+}
+
+TEST(Glsl, EveryNormalizedModelComputesItsOwnCoefficient) {
+  for (const auto& info : models()) {
+    if (info.kind != ModelKind::lobe) continue;
+    const std::string glsl = model_glsl(make_model(info.id));
+    const bool calls_k = std::regex_search(glsl, std::regex(R"(return specula_\w+_coef\(n\) \* specula_\w+_lobe\()"));
+    EXPECT_EQ(calls_k, info.normalization != Normalization::none) << info.id;
+  }
 }
 
 TEST(Glsl, TheValidatorRejectsABrokenShader) {

@@ -2,7 +2,7 @@
 // GLSL for every specula model (the paper's Fig. 10, for all of docs/math.md §2): self-contained
 // functions that compute, in float, what the C++ Model computes, with the exact normalization
 // evaluated in the shader. Each emitted function's first line cites its source, as Filament's
-// surface_brdf.fs does.
+// surface_brdf.fs does. The GLSL is in src/gl/shaders/, compiled into the library (docs/glsl.md).
 #include <array>
 #include <string>
 #include <string_view>
