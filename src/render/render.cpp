@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <vector>
@@ -143,6 +144,21 @@ struct PreparedLight {
   Rgb irradiance;
 };
 
+// docs/math.md §5, the paper's local illumination: the shading equation, written once for both
+// render paths (and once in GLSL, src/gl/shaders/scene/shading.glsl's scene_surface_radiance):
+//   L_o = ambient·ρ_d + Σ over the lights that reach the point of (ρ_d/π + ρ_s f(N, L, V)) · E · N·L,
+// summed light by light in scene order. radiance[j] becomes L_o of surface point j;
+// lit(light, add) calls add(j, f, E, N·L) for each point j that `light` reaches.
+template <class Lit>
+void shade(const Material& m, std::span<const PreparedLight> lights, std::span<Rgb> radiance, Lit&& lit) {
+  const Rgb diffuse_brdf = m.diffuse * (1 / std::numbers::pi);
+  std::fill(radiance.begin(), radiance.end(), m.ambient * m.diffuse);
+  for (const PreparedLight& light : lights)
+    lit(light, [&](std::size_t j, double f, const Rgb& irradiance, double cos_i) {
+      radiance[j] = radiance[j] + (diffuse_brdf + m.specular * f) * irradiance * cos_i;
+    });
+}
+
 /// A row's pixels lit by one light, as structure of arrays for the batch BRDF. Sized once per
 /// row and filled by index: push_back on a dozen arrays cost more than the lobe saves.
 struct LitPixels {
@@ -189,7 +205,7 @@ struct RowScratch {
   void reset(int width) {
     hits.assign(width, std::nullopt);
     view.resize(width);
-    sums.assign(width, Rgb{});
+    sums.resize(width);  // shade() sets them
     lit.reserve(width);
     f.resize(static_cast<std::size_t>(width));
   }
@@ -199,7 +215,7 @@ class Shader {
  public:
   explicit Shader(const Scene& scene)
       : scene_(scene), geometry_(scene), lights_(scene.lights.begin(), scene.lights.end()),
-        shadows_(geometry_.casts_shadows()), diffuse_brdf_(scene.material.diffuse * (1 / std::numbers::pi)) {}
+        shadows_(geometry_.casts_shadows()) {}
 
   Rgb radiance(const Ray& ray) const noexcept {
     const auto hit = geometry_.closest(ray);
@@ -215,42 +231,43 @@ class Shader {
       const Ray ray = rays(x, y);
       s.hits[x] = geometry_.closest(ray);
       s.view[x] = -ray.direction;
-      if (s.hits[x]) s.sums[x] = scene_.material.ambient * scene_.material.diffuse;
     }
-    for (const PreparedLight& light : lights_) shade_light(light, s);
+    shade(scene_.material, lights_, s.sums, [&](const PreparedLight& light, const auto& add) {
+      s.lit.count = 0;
+      for (int x = 0; x < width; ++x) {
+        if (!s.hits[x]) continue;
+        if (const auto in = reaching(*s.hits[x], light))
+          s.lit.add(x, s.hits[x]->normal, in->l, s.view[x], in->cos_i, in->irradiance);
+      }
+      simd::eval_batch(scene_.material.model, simd::Tier::exact, s.lit.batch(), s.f);
+      for (std::size_t j = 0; j < s.lit.count; ++j)
+        add(static_cast<std::size_t>(s.lit.pixel[j]), s.f[j], s.lit.irradiance[j], s.lit.cos_i[j]);
+    });
     for (int x = 0; x < width; ++x) image.set(x, y, s.hits[x] ? s.sums[x] : scene_.background);
   }
 
  private:
-  void shade_light(const PreparedLight& light, RowScratch& s) const {
-    s.lit.count = 0;
-    for (int x = 0; x < int(s.hits.size()); ++x) {
-      if (!s.hits[x]) continue;
-      const SurfaceHit& hit = *s.hits[x];
-      const Incidence in = light.at(hit.point);
-      const double cos_i = dot(hit.normal, in.l);
-      if (cos_i <= 0 || (shadows_ && in_shadow(hit, in))) continue;
-      s.lit.add(x, hit.normal, in.l, s.view[x], cos_i, in.irradiance);
-    }
-    simd::eval_batch(scene_.material.model, simd::Tier::exact, s.lit.batch(), s.f);
-    const Material& m = scene_.material;
-    for (std::size_t j = 0; j < s.lit.count; ++j) {
-      const int x = s.lit.pixel[j];
-      s.sums[x] = s.sums[x] + (diffuse_brdf_ + m.specular * s.f[j]) * s.lit.irradiance[j] * s.lit.cos_i[j];
-    }
+  Rgb surface_radiance(const SurfaceHit& hit, const Vec3& v) const noexcept {
+    Rgb sum;
+    shade(scene_.material, lights_, {&sum, 1}, [&](const PreparedLight& light, const auto& add) {
+      if (const auto in = reaching(hit, light))
+        add(0, scene_.material.model(hit.normal, in->l, v), in->irradiance, in->cos_i);
+    });
+    return sum;
   }
 
-  // docs/math.md §5: L_o = ambient·ρ_d + Σ (ρ_d/π + ρ_s f(N, L, V)) · E · max(0, N·L).
-  Rgb surface_radiance(const SurfaceHit& hit, const Vec3& v) const noexcept {
-    const Material& m = scene_.material;
-    Rgb sum = m.ambient * m.diffuse;
-    for (const PreparedLight& light : lights_) {
-      const Incidence in = light.at(hit.point);
-      const double cos_i = dot(hit.normal, in.l);
-      if (cos_i <= 0 || (shadows_ && in_shadow(hit, in))) continue;
-      sum = sum + (diffuse_brdf_ + m.specular * m.model(hit.normal, in.l, v)) * in.irradiance * cos_i;
-    }
-    return sum;
+  struct Reaching {
+    Vec3 l;
+    Rgb irradiance;
+    double cos_i;
+  };
+
+  /// The light's direction, irradiance and N·L at the hit if it reaches it: N·L > 0 and not in shadow.
+  std::optional<Reaching> reaching(const SurfaceHit& hit, const PreparedLight& light) const noexcept {
+    const Incidence in = light.at(hit.point);
+    const double cos_i = dot(hit.normal, in.l);
+    if (cos_i <= 0 || (shadows_ && in_shadow(hit, in))) return std::nullopt;
+    return Reaching{in.l, in.irradiance, cos_i};
   }
 
   // The shadow ray leaves from just above the face, on the viewer's side; a light behind the
@@ -266,7 +283,6 @@ class Shader {
   Geometry geometry_;
   std::vector<PreparedLight> lights_;
   bool shadows_;
-  Rgb diffuse_brdf_;
 };
 
 }  // namespace

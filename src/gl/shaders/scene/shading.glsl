@@ -1,4 +1,4 @@
-// The paper's local illumination (Romanyuk et al. 2023, Figs. 10-11; docs/math.md 5): the shading equation of every specula GL shader, as render/render.cpp's Shader::surface_radiance on the CPU.
+// The paper's local illumination (Romanyuk et al. 2023, Figs. 10-11; docs/math.md 5): the shading equation of every specula GL shader, as render/render.cpp's shade() on the CPU.
 // Needs scene/uniforms.glsl and the model's specula_brdf (gl/glsl.h) before it.
 #include "scene/geometry.glsl"
 // render.cpp, Shader::in_shadow: a light below the face is blocked by the face itself; else a shadow ray from just above the face toward the light.
@@ -8,7 +8,7 @@ bool scene_in_shadow(SceneSurface s, vec3 L, float distance) {
   return scene_occluded(origin, L, distance - length(origin - s.point));
 }
 
-// docs/math.md 5 (the paper's local illumination, render.cpp Shader::surface_radiance): L_o = ambient rho_d + sum over lights of (rho_d/pi + rho_s f(N, L, V)) E max(0, N.L), lights at N.L <= 0 or in shadow dropped. Shadow rays only where the CPU casts them: more than one sphere, or a mesh.
+// docs/math.md 5 (the paper's local illumination, render/render.cpp shade()): L_o = ambient rho_d + sum over lights of (rho_d/pi + rho_s f(N, L, V)) E max(0, N.L), lights at N.L <= 0 or in shadow dropped. Shadow rays only where the CPU casts them: more than one sphere, or a mesh.
 vec3 scene_surface_radiance(SceneSurface s, vec3 V) {
   vec3 sum = u_ambient * u_diffuse;
   bool shadows = u_triangle_count > 0 || u_sphere_count > 1;
