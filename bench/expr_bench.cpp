@@ -97,6 +97,9 @@ double evaluate_tree(const TreeNode& t, std::span<const std::span<const double>>
     case Op::sin: return std::sin(a());
     case Op::cos: return std::cos(a());
     case Op::acos: return std::acos(a());
+    case Op::expm1: return std::expm1(a());
+    case Op::log1p: return std::log1p(a());
+    case Op::asin: return std::asin(a());
   }
   __builtin_unreachable();
 }

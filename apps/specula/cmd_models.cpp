@@ -20,7 +20,7 @@ std::string models_table() {
     params_width = std::max(params_width, params_text(m).size());
   }
   auto line = [&](auto id, auto kind, auto form, auto norm, auto params, auto summary) {
-    return fmt::format("{:<{}}  {:<4}  {:<4}  {:<7}  {:<{}}  {}\n", id, id_width, kind, form, norm,
+    return fmt::format("{:<{}}  {:<4}  {:<4}  {:<10}  {:<{}}  {}\n", id, id_width, kind, form, norm,
                        params, params_width, summary);
   };
   std::string out = line("id", "kind", "form", "norm", "params", "summary");

@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "specula/error.h"
 #include "specula/interrupt/interrupt.h"
+#include "specula/models/model_file.h"
 #include "stop_signals.h"
 
 namespace {
@@ -19,7 +20,16 @@ int run(int argc, char** argv) {
                "Run `specula COMMAND --help` for a command's options and an example.",
                "specula"};
   app.require_subcommand(1);
-  app.footer("Example:\n  specula normalize --model log --n 1:7 --round 3   # the paper's Fig. 5 table");
+  // --models FILE before or after the command: every command sees the file's models as its own.
+  app.fallthrough();
+  std::vector<std::string> model_files;
+  app.add_option("--models", model_files, "A model file (TOML, docs/models.md) whose models every command can use "
+                             "by id; repeatable")
+      ->each([](const std::string& file) { specula::register_model_file(file); })
+      ->type_name("FILE");
+  app.footer("Every command takes --models FILE (your own models, docs/models.md) and, wherever it takes a\n"
+             "model id, an inline model: --model 'lobe: FORMULA in c' or --model 'brdf: FORMULA in nl nv nh vh lv'.\n"
+             "Example:\n  specula normalize --model log --n 1:7 --round 3   # the paper's Fig. 5 table");
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "specula: error: " + specula::one_line(e.what()) + " (see --help)\n";
   });

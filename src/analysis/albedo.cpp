@@ -44,8 +44,9 @@ Albedo rv_albedo(const L& lobe, double k, double theta_i) {
   };
   const double end = std::min(kLogCosEnd, lobe.support_log_cos());
   const double horizon = si > 0 ? -std::log(si) : end;
-  const auto e = numeric::integrate_pieces(integrand, 0, end, lobe.half_max_log_cos(), {horizon},
-                                           kOuterTolerance);
+  std::vector<double> breaks{horizon};
+  for (const double kink : lobes::kinks_log_cos(lobe)) breaks.push_back(kink);
+  const auto e = numeric::integrate_pieces(integrand, 0, end, lobe.half_max_log_cos(), breaks, kOuterTolerance);
   return {k * e.value, k * e.error};
 }
 
@@ -113,12 +114,31 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
   return {2 * e.value, 2 * e.error};
 }
 
+/// A formula BRDF's width: the θ_h where f at normal incidence (L = N, V at 2θ_h) first falls to
+/// half its value at θ_h = 0, to 1e-3 relative (θ_h ∈ [1e-6, π/4]; π/4 if it never does).
+double formula_brdf_width(const FormulaBrdf& b) {
+  auto f = [&](double theta_h) {
+    const double c = std::cos(theta_h), c2 = std::cos(2 * theta_h);
+    return b.at(1, c2, c, c, c2);
+  };
+  const double half = f(0) / 2;
+  double lo = 1e-6, hi = lo;
+  while (hi < kPi / 4 && !(f(hi) < half)) lo = hi, hi = std::min(hi * 1.5, kPi / 4);
+  if (!(f(hi) < half)) return kPi / 4;
+  while (hi - lo > 1e-3 * hi) {
+    const double mid = (lo + hi) / 2;
+    (f(mid) < half ? hi : lo) = mid;
+  }
+  return hi;
+}
+
 double brdf_width(const FullBrdf& brdf) {
   return std::visit(
       [](const auto& b) -> double {
         using B = std::decay_t<decltype(b)>;
         if constexpr (std::is_same_v<B, Ward> || std::is_same_v<B, Ggx>) return b.alpha;
         else if constexpr (std::is_same_v<B, Lambert>) return kPi / 2;
+        else if constexpr (std::is_same_v<B, FormulaBrdf>) return formula_brdf_width(b);
         else return b.m;
       },
       brdf);
@@ -155,8 +175,10 @@ Albedo albedo(const Model& model, double theta_i) {
         },
         model.lobe());
   }
+  // A formula with min/max/abs may have a V-cavity G: split where one would bend as well.
+  const auto* formula = std::get_if<FormulaBrdf>(&model.brdf());
   shape.vcavity = std::holds_alternative<CookTorrance>(model.brdf()) ||
-                  std::holds_alternative<CookTorrance1982>(model.brdf());
+                  std::holds_alternative<CookTorrance1982>(model.brdf()) || (formula && formula->has_switches());
   const Vec3 n{0, 0, 1};
   return half_vector_albedo([&](const Vec3& l, const Vec3& v, double) { return model(n, l, v); }, theta_i, shape);
 }

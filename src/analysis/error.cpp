@@ -40,7 +40,7 @@ Maximum maximize(const G& g, const std::vector<double>& grid) {
 
 /// Samples of [a, b]: dense (kSamplesPerWidth per width) up to kNearWidths widths, log-spaced
 /// beyond, plus the given extra points (kinks).
-std::vector<double> sample_grid(double a, double b, double width, std::initializer_list<double> extra) {
+std::vector<double> sample_grid(double a, double b, double width, std::vector<double> extra) {
   std::vector<double> grid;
   const double step = width / kSamplesPerWidth;
   const double near_end = std::min(b, a + kNearWidths * width);
@@ -81,12 +81,19 @@ ApproximationError error_of(const A& model, const B& reference, double zone) {
     const double r = reference.at_log_cos(u);
     return r > 0 ? std::abs(model.at_log_cos(u) - r) / r : 0.0;
   };
+  std::vector<double> kinks{model_end};
+  for (const double x : lobes::kinks_log_cos(model)) kinks.push_back(x);
+  for (const double x : lobes::kinks_log_cos(reference)) kinks.push_back(x);
+  auto with = [&](std::vector<double> more) {
+    more.insert(more.end(), kinks.begin(), kinks.end());
+    return more;
+  };
   ApproximationError e;
-  const Maximum abs_max = maximize(abs_diff, sample_grid(0, kLogCosEnd, width, {model_end, end}));
+  const Maximum abs_max = maximize(abs_diff, sample_grid(0, kLogCosEnd, width, with({end})));
   e.max_abs = abs_max.value;
   e.argmax_abs_deg = angle_deg(abs_max.at);
-  e.max_rel_epicenter = maximize(rel_diff, sample_grid(0, edge, width, {model_end})).value;
-  if (edge < end) e.max_rel_attenuation = maximize(rel_diff, sample_grid(edge, end, width, {model_end})).value;
+  e.max_rel_epicenter = maximize(rel_diff, sample_grid(0, edge, width, kinks)).value;
+  if (edge < end) e.max_rel_attenuation = maximize(rel_diff, sample_grid(edge, end, width, kinks)).value;
   return e;
 }
 

@@ -46,8 +46,9 @@ lobes::Lobe scalar_lobe(Family family, double n) {
     case Family::schlick_modified: return lobes::SchlickModified<double>{n};
     case Family::gauss: return lobes::Gauss<double>{n};
     case Family::log: return lobes::Log<double>{n};
+    case Family::formula: break;
   }
-  throw InvalidArgument("bench: unknown lobe family");
+  throw InvalidArgument("bench: a formula lobe has no built-in family");
 }
 
 /// The scalar path in lane type T: the lobe struct per value, inlined (lobes::eval_batch).
@@ -59,6 +60,7 @@ void scalar_batch(Family family, T n, std::span<const T> c, std::span<T> out) {
     case Family::schlick_modified: return lobes::eval_batch(lobes::SchlickModified<T>{n}, c, out);
     case Family::gauss: return lobes::eval_batch(lobes::Gauss<T>{n}, c, out);
     case Family::log: return lobes::eval_batch(lobes::Log<T>{n}, c, out);
+    case Family::formula: throw InvalidArgument("bench: a formula lobe has no built-in family");
   }
 }
 

@@ -19,7 +19,8 @@ constexpr std::array kFunctions{
     FunctionName{"log", Op::log},   FunctionName{"log2", Op::log2}, FunctionName{"exp", Op::exp},
     FunctionName{"sqrt", Op::sqrt}, FunctionName{"abs", Op::abs},   FunctionName{"sin", Op::sin},
     FunctionName{"cos", Op::cos},   FunctionName{"acos", Op::acos}, FunctionName{"pow", Op::pow},
-    FunctionName{"min", Op::min},   FunctionName{"max", Op::max},
+    FunctionName{"min", Op::min},   FunctionName{"max", Op::max},   FunctionName{"expm1", Op::expm1},
+    FunctionName{"log1p", Op::log1p}, FunctionName{"asin", Op::asin},
 };
 
 bool is_identifier(std::string_view name) {
@@ -85,7 +86,10 @@ int arity(Op op) {
     case Op::abs:
     case Op::sin:
     case Op::cos:
-    case Op::acos: return 1;
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: return 1;
   }
   throw InvalidArgument(fmt::format("unknown expression op {}", static_cast<int>(op)));
 }

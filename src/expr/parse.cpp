@@ -39,7 +39,7 @@ std::string describe(const Token& token) {
 }
 
 [[noreturn]] void fail(std::size_t column, std::string_view message) {
-  throw ParseError(fmt::format("column {}: {}", column, message));
+  throw ParseError(column, message);
 }
 
 // Converts the text of a number token; underflow gives the nearest subnormal or zero.
@@ -243,6 +243,9 @@ class Parser {
 };
 
 }  // namespace
+
+ParseError::ParseError(std::size_t column, std::string_view message)
+    : InvalidArgument(fmt::format("column {}: {}", column, message)), column_(column), reason_(message) {}
 
 Expression parse(std::string_view text, std::vector<std::string> variables) {
   return Parser(text, std::move(variables)).parse();

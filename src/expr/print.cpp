@@ -122,6 +122,9 @@ Fragment cpp_node(const Node& node, Operands operands, const Expression& e) {
 Fragment glsl_node(const Node& node, Operands operands, const Expression& e) {
   if (node.op == Op::constant) return signed_number(node.value, glsl_float(std::abs(node.value)));
   if (auto done = common(node, operands, e)) return *done;
+  // GLSL has neither: the plain forms (float precision hides their cancellation near 0 anyway).
+  if (node.op == Op::expm1) return {"(exp(" + operands[0].text + ") - 1.0)", kAtom};
+  if (node.op == Op::log1p) return {"log(1.0 + " + operands[0].text + ")", kAtom};
   return call(function_name(node.op), operands);
 }
 
@@ -175,6 +178,9 @@ std::string_view latex_function(Op op) {
     case Op::sin: return "\\sin";
     case Op::cos: return "\\cos";
     case Op::acos: return "\\arccos";
+    case Op::asin: return "\\arcsin";
+    case Op::expm1: return "\\operatorname{expm1}";
+    case Op::log1p: return "\\operatorname{log1p}";
     case Op::min: return "\\min";
     default: return "\\max";
   }

@@ -49,6 +49,9 @@ Partials apply(double a, double b) {
   if constexpr (op == Op::sin) return {std::sin(a), std::cos(a), 0};
   if constexpr (op == Op::cos) return {std::cos(a), -std::sin(a), 0};
   if constexpr (op == Op::acos) return {std::acos(a), -1 / std::sqrt(1 - a * a), 0};
+  if constexpr (op == Op::expm1) return {std::expm1(a), std::exp(a), 0};
+  if constexpr (op == Op::log1p) return {std::log1p(a), 1 / (1 + a), 0};
+  if constexpr (op == Op::asin) return {std::asin(a), 1 / std::sqrt(1 - a * a), 0};
   return {0, 0, 0};
 }
 
@@ -81,6 +84,9 @@ void apply_rows(Op op, std::size_t n, double* a, const double* b, double* da, do
     case Op::sin: return apply_rows<Op::sin>(n, a, b, da, db);
     case Op::cos: return apply_rows<Op::cos>(n, a, b, da, db);
     case Op::acos: return apply_rows<Op::acos>(n, a, b, da, db);
+    case Op::expm1: return apply_rows<Op::expm1>(n, a, b, da, db);
+    case Op::log1p: return apply_rows<Op::log1p>(n, a, b, da, db);
+    case Op::asin: return apply_rows<Op::asin>(n, a, b, da, db);
     case Op::constant:
     case Op::variable: return;
   }

@@ -30,6 +30,8 @@ constexpr LobeShader lobe_shader(const lobes::SchlickModified<double>&) {
 }
 constexpr LobeShader lobe_shader(const lobes::Gauss<double>&) { return {"lobes/gauss.glsl", "specula_gauss_lobe", ""}; }
 constexpr LobeShader lobe_shader(const lobes::Log<double>&) { return {"lobes/log.glsl", "specula_log_lobe", ""}; }
+/// A user's lobe has no file: its GLSL is generated from its formula (formula_glsl.h).
+constexpr LobeShader lobe_shader(const lobes::Formula&) { return {"", "", ""}; }
 
 template <class... L>
 LobeShader lobe_shader_of(const std::variant<L...>& lobe) {
@@ -65,6 +67,8 @@ constexpr std::string_view brdf_shader(const CookTorrance1982&) { return "brdfs/
 constexpr std::string_view brdf_shader(const CookTorrance&) { return "brdfs/cook-torrance.glsl"; }
 constexpr std::string_view brdf_shader(const Ggx&) { return "brdfs/ggx.glsl"; }
 constexpr std::string_view brdf_shader(const Lambert&) { return "brdfs/lambert.glsl"; }
+/// A user's BRDF has no file: its GLSL is generated from its formula (formula_glsl.h).
+constexpr std::string_view brdf_shader(const FormulaBrdf&) { return ""; }
 
 template <class... B>
 std::string_view brdf_shader_of(const std::variant<B...>& brdf) {

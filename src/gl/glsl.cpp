@@ -1,5 +1,6 @@
 #include "specula/gl/glsl.h"
 
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "specula/error.h"
+#include "formula_glsl.h"
 #include "specula/normalize/log_coef_float.h"
 #include "src/gl/family_shaders.h"
 #include "src/gl/shader_files.h"
@@ -71,11 +73,49 @@ std::string add_coef(ShaderSource& src, std::string_view id) {
   return coefficient_function(path);
 }
 
+/// A parameter's name in GLSL: its own for built-in models, p_NAME for user models.
+std::string param_name(const ModelInfo& info, const ParamInfo& p) {
+  return info.is_builtin() ? p.name : glsl_param_name(p.name);
+}
+
 /// The parameter list "float n, float s" of a model's entry function.
 std::string parameter_list(const ModelInfo& info) {
   std::string list;
-  for (const auto& p : info.params) list += fmt::format(", float {}", p.name);
+  for (const auto& p : info.params) list += fmt::format(", float {}", param_name(info, p));
   return list;
+}
+
+std::string parameter_names(const ModelInfo& info) {
+  std::string names;
+  for (const auto& p : info.params) names += (names.empty() ? "" : ", ") + param_name(info, p);
+  return names;
+}
+
+/// A user lobe: `float specula_<id>_lobe(float c, its parameters)` from its formula (in c, or in
+/// u = -log c); returns the call of it at `cosine`.
+std::string add_formula_lobe(ShaderSource& src, const Model& model, std::string_view cosine) {
+  const auto& definition = std::get<lobes::Formula>(model.lobe()).definition();
+  const expr::Program& program = definition.in_cos ? *definition.in_cos : *definition.in_log_cos;
+  const std::string name = entry_name(model) + "_lobe";
+  src.add(name, fmt::format("// {}: the lobe F of a user-defined model ({}). Source: {}.\n"
+                            "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n"
+                            "  float u = -log(c);\n{}}}",
+                            model.info().name, model.info().origin, model.info().source, name,
+                            parameter_list(model.info()), program_lines(program)));
+  const std::string names = parameter_names(model.info());
+  return fmt::format("{}({}(N, L, V){}{})", name, cosine, names.empty() ? "" : ", ", names);
+}
+
+/// A user BRDF's entry function, from its formula.
+void add_formula_brdf(ShaderSource& src, const Model& model) {
+  src.add(entry_name(model),
+          fmt::format("// {}: a user-defined BRDF ({}), f = {}. Source: {}.\n"
+                      "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
+                      "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n  vec3 H = normalize(L + V);\n"
+                      "  float nh = dot(N, H), vh = dot(V, H), lv = dot(L, V);\n{}}}",
+                      model.info().name, model.info().origin, model.info().summary, model.info().source,
+                      entry_name(model), parameter_list(model.info()),
+                      program_lines(*std::get<FormulaBrdf>(model.brdf()).program)));
 }
 
 /// k as the model defines it, or the literal of an override (Model::with_coef).
@@ -85,6 +125,10 @@ std::string coefficient_expression(ShaderSource& src, const Model& model) {
     values[std::string(model.info().params[i].name)] = model.params()[i];
   const double own_k = make_model(model.id(), values, model.form()).coef();
   if (model.coef() != own_k) return lit(model.coef());
+  if (std::holds_alternative<lobes::Formula>(model.lobe())) {
+    if (model.info().coef_program) return coefficient_formula(*model.info().coef_program);
+    return model.info().normalization == Normalization::none ? "" : lit(model.coef());  // quadrature: baked
+  }
   const std::string function = add_coef(src, model.id());
   if (function.empty() && model.info().normalization != Normalization::none)
     throw std::logic_error(fmt::format("no GLSL coefficient for model '{}'", model.id()));
@@ -95,9 +139,11 @@ void add_lobe_entry(ShaderSource& src, const Model& model) {
   const FormShader form = form_shader(model.form());
   const LobeShader lobe = lobe_shader_of(model.lobe());
   src.add_file(form.file);
-  src.add_file(lobe.file);
+  if (!lobe.file.empty()) src.add_file(lobe.file);
   const std::string k = coefficient_expression(src, model);
-  const std::string lobe_value = fmt::format("{}({}(N, L, V), n{})", lobe.function, form.function, lobe.extra_args);
+  const std::string lobe_value = lobe.file.empty()
+                                     ? add_formula_lobe(src, model, form.function)
+                                     : fmt::format("{}({}(N, L, V), n{})", lobe.function, form.function, lobe.extra_args);
   src.add(entry_name(model),
           fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; docs/math.md 2 `{}`.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  return {};\n}}",
@@ -106,16 +152,13 @@ void add_lobe_entry(ShaderSource& src, const Model& model) {
                       k.empty() ? lobe_value : k + " * " + lobe_value));
 }
 
-std::string parameter_names(const ModelInfo& info) {
-  std::string names;
-  for (const auto& p : info.params) names += (names.empty() ? "" : ", ") + std::string(p.name);
-  return names;
-}
-
-std::string entry_arguments(const ModelInfo& info) {
+/// The entry's arguments from specula_brdf's vec4: the first four parameters; any beyond are
+/// the model's values, baked in.
+std::string entry_arguments(const Model& model) {
   constexpr const char* components[] = {"x", "y", "z", "w"};
   std::string args;
-  for (std::size_t i = 0; i < info.params.size(); ++i) args += fmt::format(", params.{}", components[i]);
+  for (std::size_t i = 0; i < model.params().size(); ++i)
+    args += i < 4 ? fmt::format(", params.{}", components[i]) : ", " + lit(model.params()[i]);
   return args;
 }
 
@@ -157,9 +200,13 @@ std::string version_header(Dialect dialect) {
 }
 
 std::string entry_name(const Model& model) {
-  std::string name = "specula_" + std::string(model.id());
-  for (char& ch : name)
-    if (ch == '-') ch = '_';
+  // GLSL identifiers: letters, digits and single underscores ("__" is reserved).
+  std::string name = "specula_";
+  for (const char ch : std::string_view(model.id())) {
+    if (std::isalnum(static_cast<unsigned char>(ch))) name += ch;
+    else if (name.back() != '_') name += '_';
+  }
+  if (name.back() == '_') name.pop_back();
   return name;
 }
 
@@ -174,12 +221,14 @@ std::string model_glsl(const Model& model) {
   ShaderSource src(computed_values());
   if (model.is_lobe())
     add_lobe_entry(src, model);
+  else if (const std::string_view file = brdf_shader_of(model.brdf()); !file.empty())
+    src.add_file(file);
   else
-    src.add_file(brdf_shader_of(model.brdf()));
+    add_formula_brdf(src, model);
   src.add("specula_brdf",
           fmt::format("// The entry point renderers call: {} with params = ({}).\n"
                       "float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params) {{\n  return {}(N, L, V{});\n}}",
-                      model.id(), parameter_names(model.info()), entry_name(model), entry_arguments(model.info())));
+                      model.id(), parameter_names(model.info()), entry_name(model), entry_arguments(model)));
   return ascii(src.take());
 }
 

@@ -5,12 +5,13 @@
 
 #include "specula/error.h"
 #include "specula/models/model.h"
+#include "specula/models/model_file.h"
 #include "specula/normalize/closed_form.h"
 
 namespace specula {
 namespace {
 
-using Impl = std::variant<LobeModel, FullBrdf>;
+using Impl = ModelImpl;
 using Values = std::span<const double>;
 constexpr double kPi = std::numbers::pi;
 
@@ -29,22 +30,21 @@ Impl lobe_with(Values p, Form form, double k) {
   return LobeModel{L{p[0]}, form, k};
 }
 
-ModelInfo lobe_model(std::string_view id, std::string_view name, std::string_view summary,
-                     std::string_view source, Form form, Normalization normalization,
-                     std::string_view coef_formula, Impl (*make)(Values)) {
+ModelInfo lobe_model(std::string id, std::string name, std::string summary, std::string source, Form form,
+                     Normalization normalization, std::string coef_formula, Impl (*make)(Values)) {
   return {id, name, summary, source, ModelKind::lobe, form, normalization, coef_formula, {kExponent},
-          make};
+          make, nullptr};
 }
 
-ModelInfo brdf_model(std::string_view id, std::string_view name, std::string_view summary,
-                     std::string_view source, std::vector<ParamInfo> params, Impl (*make)(Values)) {
+ModelInfo brdf_model(std::string id, std::string name, std::string summary, std::string source,
+                     std::vector<ParamInfo> params, Impl (*make)(Values)) {
   return {id,   name, summary, source, ModelKind::brdf, Form::rv, Normalization::none, "1",
-          std::move(params), make};
+          std::move(params), make, nullptr};
 }
 
-std::vector<ModelInfo> build_catalogue() {
+std::deque<ModelInfo> build_catalogue() {
   using lobes::Gauss, lobes::Log, lobes::Power, lobes::Schlick;
-  std::vector<ModelInfo> m;
+  std::deque<ModelInfo> m;
   m.push_back(lobe_model("phong", "Phong lobe", "F = c^n", "Phong 1975", Form::rv,
                          Normalization::none, "1",
                          [](Values p) { return lobe_with<Power<>>(p, Form::rv, 1); }));
@@ -155,6 +155,7 @@ const char* to_string(Normalization normalization) noexcept {
     case Normalization::none: return "none";
     case Normalization::exact: return "exact";
     case Normalization::formula: return "formula";
+    case Normalization::quadrature: return "quadrature";
   }
   return "none";
 }
@@ -165,9 +166,38 @@ const ParamInfo* ModelInfo::find_param(std::string_view name) const noexcept {
   return nullptr;
 }
 
-const std::vector<ModelInfo>& models() {
-  static const std::vector<ModelInfo> catalogue = build_catalogue();
-  return catalogue;
+namespace {
+
+struct Catalogue {
+  std::deque<ModelInfo> models = build_catalogue();
+  const std::size_t builtin_count = models.size();
+};
+
+Catalogue& catalogue() {
+  static Catalogue c;
+  return c;
+}
+
+}  // namespace
+
+const std::deque<ModelInfo>& models() { return catalogue().models; }
+
+void register_models(std::vector<ModelInfo> infos) {
+  for (std::size_t i = 0; i < infos.size(); ++i) {
+    if (const ModelInfo* taken = find_model(infos[i].id))
+      throw InvalidArgument(fmt::format("{}: model id '{}' is already taken ({})", infos[i].origin,
+                                        infos[i].id, taken->is_builtin() ? "a built-in model" : taken->origin));
+    for (std::size_t j = 0; j < i; ++j)
+      if (infos[j].id == infos[i].id)
+        throw InvalidArgument(fmt::format("{}: model id '{}' is defined twice (first at {})", infos[i].origin,
+                                          infos[i].id, infos[j].origin));
+  }
+  for (auto& info : infos) catalogue().models.push_back(std::move(info));
+}
+
+void clear_registered_models() {
+  auto& c = catalogue();
+  c.models.erase(c.models.begin() + static_cast<std::ptrdiff_t>(c.builtin_count), c.models.end());
 }
 
 const ModelInfo* find_model(std::string_view id) noexcept {
@@ -209,22 +239,30 @@ std::string model_ids() {
 }  // namespace
 
 Model make_model(std::string_view id, const ParamValues& params, std::optional<Form> form) {
+  if (is_inline_model(id)) return make_model(inline_model(id, params), params, form);
   const ModelInfo* info = find_model(id);
   if (!info) throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", id, model_ids()));
+  // Registry entries live as long as the process: shared without ownership.
+  return make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), info), params, form);
+}
+
+Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& params, std::optional<Form> form) {
   Model model;
-  model.info_ = info;
-  for (const auto& p : info->params) model.values_.push_back(p.default_value);
+  model.info_ = std::move(info);
+  const ModelInfo& def = *model.info_;
+  const std::string_view id = def.id;
+  for (const auto& p : def.params) model.values_.push_back(p.default_value);
   for (const auto& [name, value] : params) {
-    const ParamInfo* p = info->find_param(name);
+    const ParamInfo* p = def.find_param(name);
     if (!p)
       throw InvalidArgument(fmt::format("model '{}' has no parameter '{}' (its parameters: {})", id,
-                                        name, param_names(*info)));
+                                        name, param_names(def)));
     if (std::isnan(value) || !p->accepts(value))
       throw InvalidArgument(fmt::format("parameter {} = {} is out of range for model '{}': valid {}",
                                         name, value, id, p->range_text()));
-    model.values_[static_cast<std::size_t>(p - info->params.data())] = value;
+    model.values_[static_cast<std::size_t>(p - def.params.data())] = value;
   }
-  model.impl_ = info->make(model.values_);
+  model.impl_ = def.make(model.values_);
   if (form) {
     auto* lobe_model = std::get_if<LobeModel>(&model.impl_);
     if (!lobe_model)

@@ -20,8 +20,10 @@ template <class L>
 Integral integrate(const L& lobe, Form form) {
   const double form_end = form == Form::rv ? kRvTruncation : std::numbers::ln2 / 2;
   const double end = std::min(form_end, lobe.support_log_cos());
+  const auto kinks = lobes::kinks_log_cos(lobe);
   const auto estimate = numeric::integrate_pieces(
-      [&](double u) { return lobe.at_log_cos(u) * weight(form, u); }, 0, end, lobe.half_max_log_cos());
+      [&](double u) { return lobe.at_log_cos(u) * weight(form, u); }, 0, end, lobe.half_max_log_cos(),
+      {kinks.begin(), kinks.end()});
   return {2 * std::numbers::pi * estimate.value, 2 * std::numbers::pi * estimate.error};
 }
 

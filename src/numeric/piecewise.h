@@ -21,7 +21,7 @@ inline constexpr double kDefaultTolerance = 1e-13;
 
 template <class F>
 Estimate integrate_pieces(const F& f, double a, double b, double width,
-                          std::initializer_list<double> breakpoints = {},
+                          const std::vector<double>& breakpoints = {},
                           double tolerance = kDefaultTolerance, unsigned max_depth = 15) {
   Estimate total;
   if (!(b > a)) return total;

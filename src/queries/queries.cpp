@@ -295,7 +295,8 @@ std::string models_json() {
                         {"meaning", p.meaning}});
     nlohmann::ordered_json entry = {{"id", m.id},         {"name", m.name},
                                     {"kind", to_string(m.kind)}, {"summary", m.summary},
-                                    {"source", m.source}, {"params", params}};
+                                    {"source", m.source}, {"origin", m.origin},
+                                    {"params", params}};
     if (m.kind == ModelKind::lobe) {
       entry["form"] = to_string(m.form);
       entry["normalization"] = to_string(m.normalization);

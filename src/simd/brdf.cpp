@@ -251,8 +251,11 @@ ModelDesc describe(const FullBrdf& brdf) {
           return {Kind::cook_torrance, b.m, b.f0};
         } else if constexpr (std::is_same_v<B, Ggx>) {
           return {Kind::ggx, b.alpha, b.f0};
-        } else {
+        } else if constexpr (std::is_same_v<B, Lambert>) {
           return {Kind::lambert, b.rho, 0};
+        } else {
+          static_assert(std::is_same_v<B, FormulaBrdf>, "every full BRDF has a kernel or a formula");
+          return {Kind::formula, 0, 0};
         }
       },
       brdf);
@@ -275,6 +278,28 @@ void lobe_model_batch(const Model& model, Tier tier, const DirectionBatch& dirs,
   }
 }
 
+/// A formula BRDF in chunks: the dot products (as FormulaBrdf::operator() computes them), then
+/// the program over the chunk, then 0 below the horizon.
+void formula_brdf_batch(const FormulaBrdf& brdf, const DirectionBatch& dirs, std::size_t count, double* out) {
+  std::array<std::array<double, kChunk>, FormulaBrdf::kInputs.size()> dots;
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t n = std::min(kChunk, count - first);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t r = first + i;
+      const Vec3 nn{dirs.nx[r], dirs.ny[r], dirs.nz[r]}, l{dirs.lx[r], dirs.ly[r], dirs.lz[r]},
+          v{dirs.vx[r], dirs.vy[r], dirs.vz[r]};
+      const Vec3 h = half_vector(l, v);
+      dots[0][i] = dot(nn, l), dots[1][i] = dot(nn, v), dots[2][i] = dot(nn, h), dots[3][i] = dot(v, h),
+      dots[4][i] = dot(l, v);
+    }
+    std::array<std::span<const double>, FormulaBrdf::kInputs.size()> inputs;
+    for (std::size_t k = 0; k < inputs.size(); ++k) inputs[k] = {dots[k].data(), n};
+    brdf.program->evaluate_batch(inputs, brdf.params, {out + first, n});
+    for (std::size_t i = 0; i < n; ++i)
+      if (dots[0][i] <= 0 || dots[1][i] <= 0) out[first + i] = 0;
+  }
+}
+
 }  // namespace
 
 void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::span<double> out) {
@@ -282,6 +307,8 @@ void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::
   for (const auto& s : {dirs.ny, dirs.nz, dirs.lx, dirs.ly, dirs.lz, dirs.vx, dirs.vy, dirs.vz})
     if (s.size() != dirs.size()) throw InvalidArgument("simd::eval_batch: direction arrays of different lengths");
   if (model.is_lobe()) return lobe_model_batch(model, tier, dirs, count, out.data());
+  if (const auto* formula = std::get_if<FormulaBrdf>(&model.brdf()))
+    return formula_brdf_batch(*formula, dirs, count, out.data());
   HWY_DYNAMIC_DISPATCH(FullBrdfBatch)(dirs, describe(model.brdf()), tier == Tier::fast, count, out.data());
 }
 
@@ -293,6 +320,7 @@ ErrorBound error_bound(const Model& model, Tier tier) noexcept {
     return {b.rel + eps, b.rel_per_ln, b.abs * k, b.floor * k, b.abs_below * k};
   }
   const auto kind = describe(model.brdf()).kind;
+  if (kind == ModelDesc::Kind::formula) return {};  // bit-identical to FormulaBrdf
   const bool exponential = kind != ModelDesc::Kind::ggx && kind != ModelDesc::Kind::lambert;
   if (!exponential) return {2 * eps};
   return tier == Tier::fast ? ErrorBound{2e-6, 0, 0, 0x1p-1000, 0x1p-1000} : ErrorBound{4 * eps, 0, 0, 0x1p-1000, 0x1p-1000};

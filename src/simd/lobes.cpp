@@ -62,6 +62,7 @@ auto WithKernel(const LobeSpec& lobe, Tier tier, const Visit& visit) {
                                 : visit(d, LogFast<D, false>(d, lobe.n), Lanes::native);
       return near_one ? visit(dd, LogExact<DD, is_float, true>(dd, lobe.n), exact_lanes)
                       : visit(dd, LogExact<DD, is_float, false>(dd, lobe.n), exact_lanes);
+    case Family::formula: break;  // never dispatched: eval_batch evaluates formulas itself
   }
   return visit(d, Schlick<D, false>(d, lobe.n), Lanes::native);  // unreachable: every family above
 }
@@ -116,14 +117,23 @@ LobeSpec spec_of(const lobes::Lobe& lobe) noexcept {
 }
 
 void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const float> c, std::span<float> out) noexcept {
+  if (lobe.family == Family::formula) {
+    const std::size_t count = std::min(c.size(), out.size());
+    std::vector<double> wide(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(count)), f(count);
+    lobe.formula->eval_batch(wide, f);
+    std::copy(f.begin(), f.end(), out.begin());
+    return;
+  }
   HWY_DYNAMIC_DISPATCH(EvalLobeF32)(lobe, tier, c.data(), std::min(c.size(), out.size()), out.data());
 }
 
 void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const double> c, std::span<double> out) noexcept {
+  if (lobe.family == Family::formula) return lobe.formula->eval_batch(c, out);
   HWY_DYNAMIC_DISPATCH(EvalLobeF64)(lobe, tier, c.data(), std::min(c.size(), out.size()), out.data());
 }
 
 double ops_per_value(const LobeSpec& lobe, Tier tier, bool single_precision) {
+  if (lobe.family == Family::formula) return double(lobe.formula->definition().any().node_count());
   return single_precision ? HWY_DYNAMIC_DISPATCH(OpsPerValueF32)(lobe, tier)
                           : HWY_DYNAMIC_DISPATCH(OpsPerValueF64)(lobe, tier);
 }

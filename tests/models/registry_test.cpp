@@ -9,6 +9,7 @@
 #include <functional>
 #include <set>
 
+#include "error_message.h"
 #include "specula/error.h"
 #include "specula/models/model.h"
 #include "specula/normalize/closed_form.h"
@@ -18,14 +19,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 TEST(Registry, HasEveryModelOfMathMdOnce) {
   std::set<std::string> ids;

@@ -3,7 +3,7 @@
 // An Expression is a postfix (RPN) array of nodes over named variables: compact to copy, cheap to
 // mutate, and evaluated by a stack machine. parse() reads infix text:
 //   numbers 2, 0.5, .5, 1e-3, 2.5E+7   variables (identifiers)   + - * / ^   unary -   ( )
-//   log log2 exp sqrt abs sin cos acos (one argument)   pow min max (two arguments)
+//   log log2 exp sqrt abs sin cos acos expm1 log1p asin (one argument)   pow min max (two arguments)
 // ^ is right-associative and binds tighter than unary minus (-2^2 = -4, 2^-1 = 0.5). Function names
 // are reserved. Evaluation follows IEEE semantics (x/0 is ±inf or nan, nothing throws);
 // min(a, b) = b < a ? b : a and max(a, b) = a < b ? b : a, exactly std::min / std::max.
@@ -23,7 +23,8 @@ namespace specula::expr {
 enum class Op : std::uint8_t {
   constant, variable,                            // leaves
   add, sub, mul, div, pow, min, max,             // two operands
-  neg, log, log2, exp, sqrt, abs, sin, cos, acos  // one operand
+  neg, log, log2, exp, sqrt, abs, sin, cos, acos,  // one operand
+  expm1, log1p, asin                              // one operand: e^x − 1 and ln(1 + x) exact near 0
 };
 
 struct Node {
@@ -63,7 +64,15 @@ class Expression {
 /// A syntax error; the message reads "column N: …" (1-based).
 class ParseError : public InvalidArgument {
  public:
-  using InvalidArgument::InvalidArgument;
+  ParseError(std::size_t column, std::string_view message);
+  /// The column (1-based) of the text where the error is.
+  std::size_t column() const noexcept { return column_; }
+  /// The message without its "column N: " prefix.
+  const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  std::size_t column_;
+  std::string reason_;
 };
 
 /// With `variables` given, the expression has exactly those variables (in that order) and other

@@ -40,7 +40,8 @@ std::string model_glsl(const Model& model);
 /// The model's parameter values in the layout specula_brdf's `params` expects (unused: 0).
 std::array<float, 4> model_params(const Model& model);
 
-/// "specula_<id>" with '-' as '_': the name of the model's own entry function.
+/// "specula_<id>", every run of characters other than letters and digits as one "_": the name
+/// of the model's own entry function.
 std::string entry_name(const Model& model);
 
 /// A float as a GLSL literal that reads back to the same float ("2.0", "0.197253996",

@@ -4,6 +4,7 @@
 #include <span>
 #include <variant>
 
+#include "specula/lobes/formula.h"
 #include "specula/lobes/gauss.h"
 #include "specula/lobes/log.h"
 #include "specula/lobes/power.h"
@@ -12,11 +13,11 @@
 namespace specula::lobes {
 
 using Lobe = std::variant<Power<double>, Schlick<double>, SchlickModified<double>, Gauss<double>,
-                          Log<double>>;
+                          Log<double>, Formula>;
 
 /// The family's name as tables and the CLI print it.
 inline const char* family_name(const Lobe& lobe) noexcept {
-  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log"};
+  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log", "formula"};
   static_assert(std::size(names) == std::variant_size_v<Lobe>);
   return names[lobe.index()];
 }

@@ -34,6 +34,8 @@
 //   log              exact  Max Error: ULP = 1 + 2e-14 absolute    ULP = 8 + 6e-16 absolute (the
 //                           scalar lobe's own cancellation at the cut-off c₀ is 4e-16, lobes/log.h)
 //                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
+//   formula          both   Max Error: ULP = 0.5 (double, rounded)  ULP = 0 (bit-identical to
+//                           lobes::Formula: expr::Program::evaluate_batch, libm for log/exp/pow)
 //   (rational lobes and double gauss: relative bounds hold where F ≥ the smallest normal number
 //   of the lane type; below it |F̃ − F| ≤ that number.)
 //
@@ -60,13 +62,16 @@ enum class Tier { exact, fast };
 constexpr const char* to_string(Tier tier) noexcept { return tier == Tier::exact ? "exact" : "fast"; }
 
 /// The lobe families, in lobes::Lobe's order.
-enum class Family { power, schlick, schlick_modified, gauss, log };
+enum class Family { power, schlick, schlick_modified, gauss, log, formula };
 
 /// A lobe with its parameters, whatever its scalar type.
 struct LobeSpec {
   Family family = Family::power;
   double n = 20;
   double s = 1.25;  ///< schlick-modified only
+  /// Family::formula: the lobe, evaluated in double through expr::Program::evaluate_batch (both
+  /// tiers; float lanes are rounded from it). It must outlive the spec.
+  const lobes::Formula* formula = nullptr;
 };
 
 LobeSpec spec_of(const lobes::Lobe& lobe) noexcept;
@@ -83,6 +88,7 @@ template <std::floating_point T>
 constexpr LobeSpec spec_of(const lobes::Gauss<T>& l) noexcept { return {Family::gauss, l.n}; }
 template <std::floating_point T>
 constexpr LobeSpec spec_of(const lobes::Log<T>& l) noexcept { return {Family::log, l.n}; }
+inline LobeSpec spec_of(const lobes::Formula& l) noexcept { return {Family::formula, 0, 0, &l}; }
 
 /// out[i] = F(c[i]) for i < min(c.size(), out.size()), at the tier's accuracy (bounds above).
 /// Parameters are rounded to the lane type first, as the scalar lobes of that type hold them.
@@ -98,6 +104,7 @@ void eval_batch(const L& lobe, Tier tier, std::span<const T> c, std::span<T> out
 /// target: the kernel's count (kOps in src/simd/kernels-inl.h: one per Highway op that is one
 /// arithmetic, compare, select, logic or conversion instruction on AVX2/AVX-512; loads and stores
 /// of the arrays not counted) over its lanes. The numerator of the benchmark's compute limit.
+/// A formula counts its expression nodes (one operation each, at least).
 double ops_per_value(const LobeSpec& lobe, Tier tier, bool single_precision);
 
 /// A tier's error bound against the scalar double lobe (see the top of this file).
@@ -122,7 +129,7 @@ constexpr ErrorBound error_bound(Family family, Tier tier) noexcept {
   constexpr double min_normal = std::numeric_limits<T>::min();
   // c^n and 2^(…) are flushed to 0 below 2^(emin + 3) (float 2^-125, double 2^-1021).
   constexpr double flushed = is_float ? 0x1p-125 : 0x1p-1021;
-  if (tier == Tier::fast) {
+  if (tier == Tier::fast && family != Family::formula) {
     switch (family) {
       case Family::schlick: return {(is_float ? 4 : 3) * eps, 0, 0, min_normal, min_normal};
       case Family::schlick_modified: return {6 * eps, 0, 0, min_normal, min_normal};
@@ -136,6 +143,7 @@ constexpr ErrorBound error_bound(Family family, Tier tier) noexcept {
     case Family::gauss: return is_float ? ErrorBound{eps, 0, 0, flushed, flushed}
                                         : ErrorBound{4 * eps, 4 * eps, 0, min_normal, min_normal};
     case Family::log: return is_float ? ErrorBound{eps, 0, 2e-14} : ErrorBound{8 * eps, 0, 6e-16};
+    case Family::formula: return {is_float ? eps / 2 : 0, 0, 0, 0, 0};  // double, then rounded
   }
   return {};
 }
