@@ -98,10 +98,10 @@ std::string add_formula_lobe(ShaderSource& src, const Model& model, std::string_
   const expr::Program& program = definition.in_cos ? *definition.in_cos : *definition.in_log_cos;
   const std::string name = entry_name(model) + "_lobe";
   src.add(name, fmt::format("// {}: the lobe F of a user-defined model ({}). Source: {}.\n"
-                            "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n"
-                            "  float u = -log(c);\n{}}}",
+                            "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n{}{}}}",
                             model.info().name, model.info().origin, model.info().source, name,
-                            parameter_list(model.info()), program_lines(program)));
+                            parameter_list(model.info()), program.reads(1) ? "  float u = -log(c);\n" : "",
+                            program_lines(program)));
   const std::string names = parameter_names(model.info());
   return fmt::format("{}({}(N, L, V){}{})", name, cosine, names.empty() ? "" : ", ", names);
 }
@@ -145,9 +145,10 @@ void add_lobe_entry(ShaderSource& src, const Model& model) {
                                      ? add_formula_lobe(src, model, form.function)
                                      : fmt::format("{}({}(N, L, V), n{})", lobe.function, form.function, lobe.extra_args);
   src.add(entry_name(model),
-          fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; docs/math.md 2 `{}`.\n"
+          fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  return {};\n}}",
-                      model.info().name, model.info().summary, to_string(model.form()), model.info().source, model.id(),
+                      model.info().name, model.info().summary, to_string(model.form()), model.info().source,
+                      model.info().is_builtin() ? fmt::format("docs/math.md 2 `{}`", model.id()) : model.info().origin,
                       entry_name(model), parameter_list(model.info()),
                       k.empty() ? lobe_value : k + " * " + lobe_value));
 }

@@ -57,7 +57,7 @@ TEST(Glsl, TheEveryModelCheckFailsForAModelWithoutItsGlsl) {
 
 TEST(Glsl, EveryNormalizedModelComputesItsOwnCoefficient) {
   for (const auto& info : models()) {
-    if (info.kind != ModelKind::lobe) continue;
+    if (info.kind != ModelKind::lobe || !info.is_builtin()) continue;  // user lobes: below
     const std::string glsl = model_glsl(make_model(info.id));
     const bool calls_k = std::regex_search(glsl, std::regex(R"(return specula_\w+_coef\(n\) \* specula_\w+_lobe\()"));
     EXPECT_EQ(calls_k, info.normalization != Normalization::none) << info.id;
@@ -114,6 +114,29 @@ TEST(Glsl, FormAndCoefficientOverridesAreBakedIn) {
   EXPECT_EQ(overridden.find("specula_log_rv_coef"), std::string::npos);
   const std::string bare = model_glsl(make_model("log"));
   EXPECT_NE(bare.find("return specula_log_lobe(specula_cos_rv(N, L, V), n);"), std::string::npos);
+}
+
+TEST(Glsl, UserModelsCarryTheirFormulasCoefficientsAndParameters) {
+  // A formula k is an expression in the p_ parameters; a quadrature k is baked in as a literal.
+  const std::string phong = model_glsl(make_model("my-phong", {{"n", 10}}));
+  EXPECT_NE(phong.find("return ((p_n + 2.0) / (2.0 * 3.1415927)) * specula_my_phong_lobe(specula_cos_rv(N, L, V), p_n);"),
+            std::string::npos) << phong;
+  const Model log = make_model("my-log", {{"n", 20}});
+  EXPECT_NE(model_glsl(log).find("return " + float_literal(log.coef()) + " * specula_my_log_lobe("), std::string::npos);
+  // Lets become locals; the BRDF's inputs are computed once.
+  const std::string ggx = model_glsl(make_model("my-ggx"));
+  EXPECT_NE(ggx.find("  float l_D = "), std::string::npos) << ggx;
+  EXPECT_NE(ggx.find("float nh = dot(N, H), vh = dot(V, H), lv = dot(L, V);"), std::string::npos);
+  // Parameters beyond the vec4's four are baked into specula_brdf.
+  const std::string six = model_glsl(make_model("six-parameters", {{"e2", 0.75}}));
+  EXPECT_NE(six.find("return specula_six_parameters(N, L, V, params.x, params.y, params.z, params.w, 1.0, 0.75);"),
+            std::string::npos) << six;
+  // An inline model's id becomes an identifier: runs of other characters are one '_'.
+  EXPECT_EQ(entry_name(make_model("lobe: c^n")), "specula_lobe_c_n");
+  for (const Dialect dialect : kDialects) {
+    const auto check = testing::validate_glsl(test_shader(make_model("lobe: max(0, 1 - n*(1-c)/4)^4", {{"n", 8}}), dialect), "frag");
+    EXPECT_TRUE(check.ok) << check.log;
+  }
 }
 
 TEST(Glsl, LogCoefficientCarriesTheFittedSeries) {
