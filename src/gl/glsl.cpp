@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/normalize/log_coef_float.h"
 
 namespace specula::gl {

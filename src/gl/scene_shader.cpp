@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::gl {
 namespace {

@@ -10,7 +10,7 @@
 #include "specula/analysis/monte_carlo.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/gl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"

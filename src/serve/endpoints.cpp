@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fields.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include <cmath>
 
 #include "specula/gl/glsl.h"

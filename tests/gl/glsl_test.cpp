@@ -10,7 +10,7 @@
 #include <regex>
 
 #include "glsl_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/gl/glsl.h"
 #include "specula/normalize/log_coef_chebyshev.h"
 #include "text_support.h"

@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 #include "gl_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/gl/scene_shader.h"
 
 namespace specula::gl {

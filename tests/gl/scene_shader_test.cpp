@@ -11,7 +11,7 @@
 #include <set>
 
 #include "glsl_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "text_support.h"
 
 namespace specula::gl {

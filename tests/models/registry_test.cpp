@@ -9,7 +9,7 @@
 #include <functional>
 #include <set>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/models/model.h"
 #include "specula/normalize/closed_form.h"
 

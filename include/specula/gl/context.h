@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/render/image.h"
 
 namespace specula::gl {
