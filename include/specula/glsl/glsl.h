@@ -9,7 +9,7 @@
 
 #include "specula/models/model.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 
 /// The GLSL dialects specula emits: desktop GLSL 3.30 core, GLSL ES 3.00, and WebGL 2 (whose
 /// shading language is GLSL ES 3.00; emitted identically, named for the user's benefit).
@@ -47,4 +47,4 @@ std::string entry_name(const Model& model);
 /// "2.02299907e-09").
 std::string float_literal(double value);
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

@@ -1,4 +1,4 @@
-#include "specula/gl/glsl.h"
+#include "specula/glsl/glsl.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include "specula/exceptions.h"
 #include "specula/normalize/log_coef_float.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -406,4 +406,4 @@ std::array<float, 4> model_params(const Model& model) {
   return packed;
 }
 
-}  // namespace specula::gl
+}  // namespace specula::glsl
