@@ -6,7 +6,7 @@
 // list one (a device without EGL_MESA_device_software), else Mesa's surfaceless platform
 // (llvmpipe on a machine without a GPU). The environment variable SPECULA_EGL_PLATFORM=device or
 // =surfaceless tries only that kind. Part of the separate library specula_gl, which links
-// libEGL and libOpenGL (glvnd); libspecula itself needs neither.
+// libEGL and libOpenGL (glvnd); no other specula library needs either.
 #include <memory>
 #include <string>
 #include <string_view>
