@@ -1,12 +1,12 @@
 // specula_lobe_bench: the benchmark that settles the lobes' speed claims (what `make bench` runs
 // first, and `specula bench` from the shipped binary): every lobe through the scalar lobe (libm)
 // and the SIMD exact and fast tiers, in cache and streaming, on one core and all, against the
-// machine's compute and memory limits. The measurements are the library's (bench/lobe_bench.h);
+// machine's compute and memory limits. The measurements are the library's (cost/lobe_cost.h);
 // docs/simd.md explains the table. Usage: specula_lobe_bench [--quick] [--json]
 #include <cstdio>
 #include <string_view>
 
-#include "specula/bench/lobe_bench.h"
+#include "specula/cost/lobe_cost.h"
 
 int main(int argc, char** argv) {
   bool quick = false, json = false;
@@ -19,11 +19,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  using specula::bench::Settings;
-  const auto result = specula::bench::run(quick ? Settings::quick() : Settings::full(), [](std::string_view phase) {
+  using specula::cost::Settings;
+  const auto result = specula::cost::run(quick ? Settings::quick() : Settings::full(), [](std::string_view phase) {
     std::fprintf(stderr, "bench: %.*s\n", int(phase.size()), phase.data());
   });
-  const std::string text = json ? specula::bench::to_json(result) : specula::bench::to_table(result);
+  const std::string text = json ? specula::cost::to_json(result) : specula::cost::to_table(result);
   std::fwrite(text.data(), 1, text.size(), stdout);
   return 0;
 }

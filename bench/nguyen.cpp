@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/fit/fit.h"
 
 namespace {

@@ -49,7 +49,7 @@ void BM_RenderGl(benchmark::State& state) {
   const gl::Context context;
   gl::Renderer renderer(context);
   const auto start = std::chrono::steady_clock::now();
-  renderer.prepare(scene.material.model, gl::geometry_of(scene));
+  renderer.prepare(scene.material.model, render::geometry_of(scene));
   renderer.render(scene, {1, 1});  // llvmpipe turns the shader into machine code at its first draw
   const double compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   renderer.render(scene, {side, side});  // the context's colour target at this size, made once

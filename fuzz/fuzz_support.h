@@ -15,7 +15,7 @@
 #include <string_view>
 #include <typeinfo>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::fuzz {
 

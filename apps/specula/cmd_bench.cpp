@@ -1,8 +1,8 @@
-// specula bench: the lobe benchmark (bench/lobe_bench.h) from the shipped binary.
+// specula bench: the lobe benchmark (cost/lobe_cost.h) from the shipped binary.
 #include <fmt/format.h>
 
 #include "cli.h"
-#include "specula/bench/lobe_bench.h"
+#include "specula/cost/lobe_cost.h"
 
 namespace specula::cli {
 namespace {
@@ -34,13 +34,13 @@ void add_bench_command(CLI::App& app) {
       "  specula bench --quick\n"
       "  specula bench --format json | jq '.lobes.log.fast.evals_per_s_per_core'");
   cmd->callback([o] {
-    bench::Settings settings = o->quick ? bench::Settings::quick() : bench::Settings::full();
+    cost::Settings settings = o->quick ? cost::Settings::quick() : cost::Settings::full();
     settings.n = o->n;
     auto progress = [verbose = o->verbose](std::string_view phase) {
       if (verbose) fmt::print(stderr, "bench: {}\n", phase);
     };
-    const bench::Result result = bench::run(settings, progress);
-    write_output(o->out, o->format == "json" ? bench::to_json(result) : bench::to_table(result));
+    const cost::Result result = cost::run(settings, progress);
+    write_output(o->out, o->format == "json" ? cost::to_json(result) : cost::to_table(result));
   });
 }
 

@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "specula/analysis/check.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::cli {
 namespace {

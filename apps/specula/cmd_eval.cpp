@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "cli.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/io/csv.h"

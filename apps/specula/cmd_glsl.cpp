@@ -1,7 +1,7 @@
 // specula glsl: a model as a self-contained GLSL function (the paper's Fig. 10, for every model).
 #include "cli.h"
-#include "specula/gl/glsl.h"
-#include "specula/gl/scene_shader.h"
+#include "specula/glsl/glsl.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::cli {
 namespace {
@@ -16,8 +16,9 @@ struct GlslOptions {
 
 std::string function_text(const GlslOptions& o) {
   const Model model = o.model.make();
-  if (o.vertex) return gl::scene_vertex_shader(gl::parse_dialect(o.dialect));
-  if (o.shader) return gl::scene_fragment_shader(model, gl::parse_dialect(o.dialect), gl::SceneGeometry::spheres);
+  if (o.vertex) return render::scene_vertex_shader(glsl::parse_dialect(o.dialect));
+  if (o.shader)
+    return render::scene_fragment_shader(model, glsl::parse_dialect(o.dialect), render::SceneGeometry::spheres);
   return queries::glsl_function(model, o.dialect, queries::Spelling::option);
 }
 

@@ -8,7 +8,7 @@
 
 #include "cli.h"
 #include "render_options.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/gl/render_gl.h"
 #include "specula/render/image_io.h"
 #include "specula/render/render.h"

@@ -7,7 +7,7 @@
 #endif
 
 #include "cli.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/models/model_file.h"
 #include "stop_signals.h"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "cli.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::cli {
 namespace {

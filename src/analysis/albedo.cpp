@@ -6,7 +6,7 @@
 
 #include "../numeric/piecewise.h"
 #include "specula/analysis/parallel.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {

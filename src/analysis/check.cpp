@@ -9,7 +9,7 @@
 
 #include "../numeric/golden_section.h"
 #include "specula/analysis/albedo.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {

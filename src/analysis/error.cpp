@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "../numeric/golden_section.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::analysis {

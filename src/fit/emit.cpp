@@ -5,7 +5,7 @@
 #include <fmt/ranges.h>
 #include <set>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::fit {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "gl_api.h"
-#include "specula/gl/scene_shader.h"
 #include "specula/render/bvh.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::gl {
 namespace {
@@ -63,7 +63,7 @@ class UniformWriter {
   std::set<std::string> names_;
 };
 
-void set_uniforms(UniformWriter& w, const SceneUniforms& u) {
+void set_uniforms(UniformWriter& w, const render::SceneUniforms& u) {
   w.set("u_resolution", u.resolution);
   w.set("u_eye", u.eye);
   w.set("u_forward", u.forward);
@@ -114,8 +114,9 @@ class DataTexture {
 };
 
 // The mesh's textures, checked against the driver's texture size.
-MeshTextures fitting_mesh(const render::Scene& scene, const ContextInfo& info) {
-  const MeshTextures mesh = mesh_textures(render::Bvh(scene.triangles), std::min(4096, info.max_texture_size));
+render::MeshTextures fitting_mesh(const render::Scene& scene, const ContextInfo& info) {
+  const render::MeshTextures mesh =
+      render::mesh_textures(render::Bvh(scene.triangles), std::min(4096, info.max_texture_size));
   if (std::max(mesh.triangle_rows, mesh.node_rows) > info.max_texture_size)
     throw InvalidArgument(fmt::format("the mesh's {} triangles need {}x{} texels, more than {} allows ({} per side)",
                                       scene.triangles.size(), mesh.width, mesh.triangle_rows, info.renderer,
@@ -130,12 +131,12 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 struct Renderer::Compiled {
-  Compiled(const Context& context, std::string model, SceneGeometry traced, const std::string& fragment)
+  Compiled(const Context& context, std::string model, render::SceneGeometry traced, const std::string& fragment)
       : model_source(std::move(model)), geometry(traced),
-        program(context, scene_vertex_shader(Dialect::glsl330), fragment) {}
+        program(context, render::scene_vertex_shader(glsl::Dialect::glsl330), fragment) {}
 
   std::string model_source;
-  SceneGeometry geometry;
+  render::SceneGeometry geometry;
   Program program;
 };
 
@@ -144,24 +145,24 @@ Renderer::Renderer(const Context& context, int tile_side)
 
 Renderer::~Renderer() = default;
 
-double Renderer::prepare(const Model& model, SceneGeometry geometry) {
-  // The shader differs between models only in model_glsl (the rest of the text, comments with
+double Renderer::prepare(const Model& model, render::SceneGeometry geometry) {
+  // The shader differs between models only in glsl::model_glsl (the rest of the text, comments with
   // the default values aside, is the same for all).
-  std::string model_source = model_glsl(model);
+  std::string model_source = glsl::model_glsl(model);
   if (compiled_ && compiled_->model_source == model_source && compiled_->geometry == geometry) return 0;
   const auto start = std::chrono::steady_clock::now();
   compiled_.reset();
   compiled_ = std::make_unique<Compiled>(*context_, std::move(model_source), geometry,
-                                         scene_fragment_shader(model, Dialect::glsl330, geometry));
+                                         render::scene_fragment_shader(model, glsl::Dialect::glsl330, geometry));
   return milliseconds_since(start);
 }
 
 render::Image Renderer::render(const render::Scene& scene, const render::RenderSettings& settings,
                                const std::optional<render::Display>& display) {
-  const SceneUniforms uniforms = scene_uniforms(scene, settings, display);
+  const render::SceneUniforms uniforms = render::scene_uniforms(scene, settings, display);
   context_->make_current();
-  const MeshTextures mesh = fitting_mesh(scene, context_->info());
-  prepare(scene.material.model, geometry_of(scene));
+  const render::MeshTextures mesh = fitting_mesh(scene, context_->info());
+  prepare(scene.material.model, render::geometry_of(scene));
   const GLuint program = compiled_->program.id();
   glUseProgram(program);
   UniformWriter writer(program);
@@ -175,7 +176,7 @@ render::Image Renderer::render(const render::Scene& scene, const render::RenderS
 }
 
 render::Image render_gl(const render::Scene& scene, const render::RenderSettings& settings) {
-  scene_uniforms(scene, settings);  // bad input fails before a context is made
+  render::scene_uniforms(scene, settings);  // bad input fails before a context is made
   const Context context;
   Renderer renderer(context);
   return renderer.render(scene, settings);

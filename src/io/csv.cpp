@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <unordered_map>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 
 namespace specula::io {

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::io {

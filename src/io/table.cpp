@@ -5,7 +5,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::io {
 

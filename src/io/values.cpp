@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <string>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::io {
 namespace {

@@ -10,7 +10,7 @@
 #include <set>
 #include <toml++/toml.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/normalize/quadrature.h"
 

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/models/model.h"
 #include "specula/models/model_file.h"
 #include "specula/normalize/closed_form.h"

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::normalize {

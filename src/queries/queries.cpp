@@ -10,8 +10,8 @@
 #include "specula/analysis/monte_carlo.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
-#include "specula/gl/glsl.h"
+#include "specula/exceptions.h"
+#include "specula/glsl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"
 #include "specula/normalize/normalize.h"
@@ -267,19 +267,20 @@ std::string check_json(const std::vector<CheckCase>& cases) {
 }
 
 std::string glsl_function(const Model& model, std::string_view dialect_name, Spelling) {
-  const gl::Dialect dialect = for_field("dialect", [&] { return gl::parse_dialect(dialect_name); });
+  const glsl::Dialect dialect = for_field("dialect", [&] { return glsl::parse_dialect(dialect_name); });
   std::string params;
   for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
-  const auto p = gl::model_params(model);
-  const std::string call = fmt::format("vec4({}, {}, {}, {})", gl::float_literal(p[0]), gl::float_literal(p[1]),
-                                       gl::float_literal(p[2]), gl::float_literal(p[3]));
+  const auto p = glsl::model_params(model);
+  const std::string call = fmt::format("vec4({}, {}, {}, {})", glsl::float_literal(p[0]), glsl::float_literal(p[1]),
+                                       glsl::float_literal(p[2]), glsl::float_literal(p[3]));
   return fmt::format(
       "// specula glsl:{}\n"
       "// For {} (no #version here: paste into a shader that has one). N, L, V: unit vectors,\n"
       "// L toward the light, V toward the viewer. At these parameters:\n"
       "//   float f = specula_brdf(N, L, V, {});\n{}",
-      params, dialect == gl::Dialect::glsl330 ? "GLSL 3.30 core" : gl::to_string(dialect) + std::string(" (GLSL ES 3.00)"),
-      call, gl::model_glsl(model));
+      params,
+      dialect == glsl::Dialect::glsl330 ? "GLSL 3.30 core" : glsl::to_string(dialect) + std::string(" (GLSL ES 3.00)"),
+      call, glsl::model_glsl(model));
 }
 
 std::string models_json() {

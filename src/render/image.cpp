@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::render {
 namespace {

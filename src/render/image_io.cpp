@@ -20,7 +20,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/io/table.h"
 

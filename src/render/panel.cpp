@@ -7,7 +7,7 @@
 #include <map>
 #include <memory>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "text.h"
 
 namespace specula::render {

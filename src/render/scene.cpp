@@ -12,7 +12,7 @@
 #include <limits>
 
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/io/table.h"
 #include "specula/io/values.h"

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::render {
 namespace {

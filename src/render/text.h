@@ -1,5 +1,5 @@
 #pragma once
-// Text for figures (internal to libspecula): one line of UTF-8 set in a TrueType font with
+// Text for figures (internal to specula_render): one line of UTF-8 set in a TrueType font with
 // FreeType — grey-scale anti-aliasing, hinting and kerning as FreeType does them — as a coverage
 // mask that the caller blends into an image.
 #include <cstdint>

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/io/table.h"
 

@@ -1,6 +1,6 @@
 // Beyond the paper: what a model costs to evaluate on the machine writing the report, next to how
 // far its lobe is from cⁿ (docs/math.md §3) — the trade the paper makes when it replaces a power by a
-// logarithm pair. The chart comes from the lobe benchmark (bench/lobe_bench.h, `specula bench`):
+// logarithm pair. The chart comes from the lobe benchmark (cost/lobe_cost.h, `specula bench`):
 // each lobe through the scalar lobe (libm) and the SIMD exact and fast tiers; the table below it
 // times every model of the catalogue through the registry, one f(N, L, V) per call.
 #include <algorithm>
@@ -13,9 +13,9 @@
 
 #include "sections.h"
 #include "specula/analysis/error.h"
-#include "specula/bench/lobe_bench.h"
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
+#include "specula/cost/lobe_cost.h"
+#include "specula/exceptions.h"
 #include "specula/models/model.h"
 #include "specula/report/plot.h"
 
@@ -143,7 +143,7 @@ const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
 
 constexpr simd::Family kFamilies[] = {simd::Family::power, simd::Family::schlick, simd::Family::schlick_modified,
                                       simd::Family::gauss, simd::Family::log};
-constexpr bench::Path kPaths[] = {bench::Path::scalar, bench::Path::exact, bench::Path::fast};
+constexpr cost::Path kPaths[] = {cost::Path::scalar, cost::Path::exact, cost::Path::fast};
 
 /// The registry id whose colour a lobe family takes in every figure.
 const char* colour_id(simd::Family family) {
@@ -153,17 +153,17 @@ const char* colour_id(simd::Family family) {
 
 /// One point per lobe and path (float, in cache, one core): ns per evaluation against the
 /// lobe's max |F − cⁿ|, the three paths of a lobe joined; cⁿ itself (error 0) as vertical lines.
-Chart cost_chart(const bench::Result& r) {
+Chart cost_chart(const cost::Result& r) {
   Chart chart{fmt::format("Accuracy against cost: lobes at n = {}, scalar libm and SIMD ({})", r.settings.n, r.machine.target),
               {"cost (ns per evaluation, float, in cache, one core)", Scale::log, std::nullopt, std::nullopt},
               {"max |F − cⁿ| (the lobe against Phong's)", Scale::log, std::nullopt, std::nullopt}, {}};
   double y_lo = INFINITY, y_hi = 0;
   for (std::size_t i = 1; i < std::size(kFamilies); ++i) {
-    Series s{bench::family_name(kFamilies[i]), model_colour(colour_id(kFamilies[i])), {}, {}, Stroke::solid, true, {}};
+    Series s{cost::family_name(kFamilies[i]), model_colour(colour_id(kFamilies[i])), {}, {}, Stroke::solid, true, {}};
     for (const auto path : kPaths) {
       s.x.push_back(r.at(kFamilies[i], path, true).cache_ns);
       s.y.push_back(r.error_vs_power[i]);
-      s.point_labels.push_back(bench::to_string(path));
+      s.point_labels.push_back(cost::to_string(path));
     }
     y_lo = std::min(y_lo, r.error_vs_power[i]);
     y_hi = std::max(y_hi, r.error_vs_power[i]);
@@ -173,7 +173,7 @@ Chart cost_chart(const bench::Result& r) {
   chart.y.max = std::pow(10, std::ceil(std::log10(y_hi)));
   for (const auto path : kPaths) {
     const double ns = r.at(simd::Family::power, path, true).cache_ns;
-    chart.series.push_back({path == bench::Path::scalar ? "cⁿ itself (phong): exact; libm, SIMD exact, SIMD fast" : "",
+    chart.series.push_back({path == cost::Path::scalar ? "cⁿ itself (phong): exact; libm, SIMD exact, SIMD fast" : "",
                             model_colour("phong"), {ns, ns}, {*chart.y.min, *chart.y.max}, Stroke::dashed});
   }
   chart.legend = Legend::bottom_left;
@@ -182,13 +182,13 @@ Chart cost_chart(const bench::Result& r) {
   return chart;
 }
 
-std::string bench_table(const bench::Result& r) {
+std::string bench_table(const cost::Result& r) {
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < std::size(kFamilies); ++i)
     for (const auto path : kPaths) {
-      const bench::Measurement& m = r.at(kFamilies[i], path, true);
-      const double scalar = r.at(kFamilies[i], bench::Path::scalar, true).cache_ns;
-      rows.push_back({bench::family_name(kFamilies[i]), bench::to_string(path), show(m.cache_ns, 3),
+      const cost::Measurement& m = r.at(kFamilies[i], path, true);
+      const double scalar = r.at(kFamilies[i], cost::Path::scalar, true).cache_ns;
+      rows.push_back({cost::family_name(kFamilies[i]), cost::to_string(path), show(m.cache_ns, 3),
                       show(scalar / m.cache_ns, 3) + "×", show(m.evals_per_s_per_core(), 3), show(m.max_rel_error, 2),
                       show(r.error_vs_power[i], 4)});
     }
@@ -197,13 +197,13 @@ std::string bench_table(const bench::Result& r) {
                     rows, "cost-simd");
 }
 
-DataTable bench_data(const bench::Result& r) {
+DataTable bench_data(const cost::Result& r) {
   DataTable table{"cost-simd",
                   {"lobe", "path", "precision", "ns_per_eval", "evals_per_s_per_core", "max_rel_error", "max_abs_error",
                    "max_abs_error_vs_power"},
                   {}};
   for (const auto& m : r.rows)
-    table.rows.push_back({std::string(bench::family_name(m.family)), std::string(bench::to_string(m.path)),
+    table.rows.push_back({std::string(cost::family_name(m.family)), std::string(cost::to_string(m.path)),
                           std::string(m.single ? "float" : "double"), m.cache_ns, m.evals_per_s_per_core(),
                           m.max_rel_error, m.max_abs_error, r.error_vs_power[static_cast<std::size_t>(m.family)]});
   return table;
@@ -249,7 +249,7 @@ std::string relative_costs(const std::vector<Cost>& costs) {
 
 Section cost_section(Context& context) {
   context.progress("Cost: evaluation time against accuracy");
-  const bench::Result simd = bench::run(bench::Settings::report(context.quick()));
+  const cost::Result simd = cost::run(cost::Settings::report(context.quick()));
   const std::vector<Cost> costs = measure_costs(context);
   const std::string links = context.save(cost_data(costs));
   const std::string simd_links = context.save(bench_data(simd));

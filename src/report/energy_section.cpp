@@ -11,7 +11,7 @@
 #include "specula/analysis/check.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/report/plot.h"
 
 namespace specula::report {

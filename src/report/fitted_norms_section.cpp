@@ -8,7 +8,7 @@
 
 #include "sections.h"
 #include "specula/analysis/parallel.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 #include "specula/fit/fit.h"
 #include "specula/models/model.h"

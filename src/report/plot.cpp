@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::report {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "context.h"
 #include "sections.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 
 namespace specula::report {

@@ -3,13 +3,13 @@
 #include <fmt/format.h>
 
 #include "sections.h"
-#include "specula/gl/glsl.h"
+#include "specula/glsl/glsl.h"
 #include "specula/io/files.h"
+#include "specula/normalize/closed_form.h"
+#include "specula/normalize/log_coef_float.h"
 #include "specula/render/image_io.h"
 #include "specula/render/panel.h"
 #include "specula/render/render.h"
-#include "specula/normalize/closed_form.h"
-#include "specula/normalize/log_coef_float.h"
 
 namespace specula::report {
 namespace {
@@ -26,8 +26,8 @@ double shader_coef_error() {
 
 std::string fig10(Context& context) {
   const Model model = make_model("log-normalized");
-  const std::string glsl = gl::model_glsl(model);
-  context.write("fig10-log-normalized.glsl", glsl);
+  const std::string source = glsl::model_glsl(model);
+  context.write("fig10-log-normalized.glsl", source);
   const double error = shader_coef_error();
   context.findings["shader_coef_error"] = {error, show(error, 2)};
   return "<h3 id=\"fig10\">Fig. 10: the model in GLSL</h3>\n" +
@@ -39,7 +39,7 @@ std::string fig10(Context& context) {
              "(measured now, in float arithmetic identical to the shader's). Each function cites its source on its "
              "first line. File: <a href=\"fig10-log-normalized.glsl\">fig10-log-normalized.glsl</a>.</p>\n",
              show(error, 2)) +
-         "<details><summary>The GLSL</summary><pre><code>" + xml_escape(glsl) + "</code></pre></details>\n";
+         "<details><summary>The GLSL</summary><pre><code>" + xml_escape(source) + "</code></pre></details>\n";
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include "assets.h"
 #include "endpoints.h"
 #include "fit_jobs.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::serve {

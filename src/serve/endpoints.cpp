@@ -4,13 +4,13 @@
 #include <nlohmann/json.hpp>
 
 #include "fields.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include <cmath>
 
-#include "specula/gl/glsl.h"
-#include "specula/gl/scene_shader.h"
-#include "specula/render/scene.h"
+#include "specula/glsl/glsl.h"
 #include "specula/queries/queries.h"
+#include "specula/render/scene.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::serve {
 namespace {
@@ -118,7 +118,7 @@ nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits&
       size[0] < 1 || size[1] < 1 || size[0] > static_cast<double>(limits.max_image_side) ||
       size[1] > static_cast<double>(limits.max_image_side))
     fail("size", fmt::format("size must be [width, height], whole numbers in [1, {}]", limits.max_image_side));
-  const gl::SceneUniforms u = gl::scene_uniforms(
+  const render::SceneUniforms u = render::scene_uniforms(
       scene, {static_cast<int>(size[0]), static_cast<int>(size[1])}, render::Display{});
   return {{"u_resolution", u.resolution}, {"u_pixel_offset", std::array<float, 2>{0, 0}},
           {"u_eye", u.eye}, {"u_forward", u.forward}, {"u_right", u.right}, {"u_up", u.up},
@@ -137,20 +137,20 @@ std::string glsl_endpoint(std::string_view body, const Limits& limits) {
   const Model m = queries::make(f.model(), kKey);
   const std::string dialect = f.text_or("dialect", "webgl2");
   const std::string function = queries::glsl_function(m, dialect, kKey);
-  const gl::Dialect parsed = gl::parse_dialect(dialect);
+  const glsl::Dialect parsed = glsl::parse_dialect(dialect);
   nlohmann::ordered_json out;
   for (const auto& [key, value] : queries::model_meta(m)) out[key] = value;
   out["dialect"] = dialect;
   out["entry"] = "specula_brdf";
-  out["entry_params"] = gl::model_params(m);
-  out["version_header"] = gl::version_header(parsed);
+  out["entry_params"] = glsl::model_params(m);
+  out["version_header"] = glsl::version_header(parsed);
   out["function"] = function;
   const bool shader = f.flag_or("shader", false);
   if (!shader && (f.has("light") || f.has("size"))) fail(f.has("light") ? "light" : "size", "light and size go with shader: true");
   if (shader) {
-    // The comparison sphere as `specula render --backend gl` draws it (gl/scene_shader.h).
-    out["vertex_shader"] = gl::scene_vertex_shader(parsed);
-    out["fragment_shader"] = gl::scene_fragment_shader(m, parsed, gl::SceneGeometry::spheres);
+    // The comparison sphere as `specula render --backend gl` draws it (render/scene_shader.h).
+    out["vertex_shader"] = render::scene_vertex_shader(parsed);
+    out["fragment_shader"] = render::scene_fragment_shader(m, parsed, render::SceneGeometry::spheres);
     out["uniforms"] = scene_json(m, f, limits);
   }
   return out.dump(2) + "\n";

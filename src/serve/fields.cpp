@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/values.h"
 
 namespace specula::serve {

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "fields.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"

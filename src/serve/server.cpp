@@ -20,7 +20,7 @@
 #include <optional>
 #include <thread>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::serve {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <variant>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/simd/brdf.h"
 #include "src/simd/model_desc.h"
 

@@ -10,7 +10,7 @@
 #include "specula/analysis/albedo.h"
 #include "specula/analysis/monte_carlo.h"
 #include "specula/brdf/microfacet.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/values.h"
 
 namespace specula::analysis {

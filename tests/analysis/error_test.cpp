@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "specula/analysis/error.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::analysis {
 namespace {

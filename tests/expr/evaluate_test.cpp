@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "expr/random_expression.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 
 namespace specula::expr {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 
 namespace specula::expr {

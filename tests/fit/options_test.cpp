@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/fit/fit.h"
 
 namespace specula::fit {

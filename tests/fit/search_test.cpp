@@ -11,7 +11,7 @@
 #include <future>
 #include <thread>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"

@@ -18,7 +18,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using specula::testing::shared_context;
 
-// A full-screen triangle from gl_VertexID, like scene_vertex_shader's.
+// A full-screen triangle from gl_VertexID, like render::scene_vertex_shader's.
 constexpr const char* kVertex = R"(#version 330 core
 void main() {
   vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));

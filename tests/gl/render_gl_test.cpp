@@ -17,8 +17,8 @@
 #include <unistd.h>
 
 #include "gl_support.h"
-#include "specula/error.h"
-#include "specula/gl/scene_shader.h"
+#include "specula/exceptions.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::gl {
 namespace {
@@ -196,7 +196,7 @@ TEST(RenderGl, AgreesWithTheCpuOnSpheresShadowingEachOther) {
   expect_agreement(scene, "three spheres, schlick");
   // The same through the shader that also traverses a mesh: one triangle buried in the floor.
   scene.triangles.push_back({{Vec3{0, -150, 0}, Vec3{1, -150, 0}, Vec3{0, -150, 1}}, {}, false});
-  ASSERT_EQ(geometry_of(scene), SceneGeometry::spheres_and_mesh);
+  ASSERT_EQ(render::geometry_of(scene), render::SceneGeometry::spheres_and_mesh);
   expect_agreement(scene, "three spheres + buried triangle");
 }
 
@@ -226,12 +226,12 @@ TEST(RenderGl, TilesGiveTheSameImage) {
 TEST(RenderGl, CompilesOncePerModel) {
   Renderer renderer(shared_context());
   const Model model = make_model("gauss", {{"n", 20}});
-  constexpr auto spheres = SceneGeometry::spheres;
+  constexpr auto spheres = render::SceneGeometry::spheres;
   EXPECT_GT(renderer.prepare(model, spheres), 0.0);
   EXPECT_EQ(renderer.prepare(model, spheres), 0.0);
   EXPECT_EQ(renderer.prepare(make_model("gauss", {{"n", 30}}), spheres), 0.0);  // a parameter is a uniform
   EXPECT_GT(renderer.prepare(make_model("gauss", {{"n", 30}}, Form::rv), spheres), 0.0);  // the default is nh
-  EXPECT_GT(renderer.prepare(make_model("gauss", {{"n", 30}}, Form::rv), SceneGeometry::spheres_and_mesh), 0.0);
+  EXPECT_GT(renderer.prepare(make_model("gauss", {{"n", 30}}, Form::rv), render::SceneGeometry::spheres_and_mesh), 0.0);
 }
 
 std::string error_of(const render::Scene& scene, const render::RenderSettings& settings) {

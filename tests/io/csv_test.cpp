@@ -17,7 +17,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/table.h"
 
 namespace specula::io {

@@ -18,7 +18,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::io {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "text_support.h"
 
 namespace specula::io {

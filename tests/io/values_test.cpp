@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::io {
 namespace {

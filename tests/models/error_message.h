@@ -3,7 +3,7 @@
 #include <functional>
 #include <string>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::testing {
 

@@ -12,7 +12,7 @@
 #include "specula/analysis/albedo.h"
 #include "specula/brdf/directions.h"
 #include "error_message.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/models/model_file.h"
 #include "specula/normalize/closed_form.h"

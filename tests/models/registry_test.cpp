@@ -10,7 +10,7 @@
 #include <set>
 
 #include "error_message.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/models/model.h"
 #include "specula/normalize/closed_form.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "reference_table.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/io/values.h"
 #include "specula/normalize/normalize.h"
 

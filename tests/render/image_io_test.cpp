@@ -10,7 +10,7 @@
 #include <random>
 
 #include "render_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "text_support.h"
 
 namespace specula::render {

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::render {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "../src/render/text.h"
 #include "render_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::render {
 namespace {

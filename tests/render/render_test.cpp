@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "render_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::render {
 namespace {

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "render_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/render/bvh.h"
 
 namespace specula::render {

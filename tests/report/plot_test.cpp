@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/report/plot.h"
 
 namespace specula::report {

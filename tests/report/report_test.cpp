@@ -8,7 +8,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 #include "specula/models/model.h"
 #include "specula/normalize/normalize.h"

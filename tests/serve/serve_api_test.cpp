@@ -10,13 +10,13 @@
 #include "specula/analysis/check.h"
 #include "specula/analysis/error.h"
 #include "specula/brdf/directions.h"
-#include "specula/gl/glsl.h"
-#include "specula/gl/scene_shader.h"
-#include "specula/render/scene.h"
+#include "specula/glsl/glsl.h"
 #include "specula/io/table.h"
 #include "specula/io/values.h"
 #include "specula/models/model.h"
 #include "specula/normalize/normalize.h"
+#include "specula/render/scene.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::serve {
 namespace {
@@ -161,9 +161,9 @@ TEST_F(ServeApi, GlslGivesTheModelsFunctionAndHowToCallIt) {
   const Model m = make_model("log-normalized", {{"n", 50}});
   EXPECT_EQ(t["dialect"], "webgl2");
   EXPECT_EQ(t["entry"], "specula_brdf");
-  EXPECT_THAT(t["function"].get<std::string>(), HasSubstr(gl::model_glsl(m)));
-  EXPECT_EQ(t["entry_params"].get<std::vector<float>>()[0], gl::model_params(m)[0]);
-  EXPECT_EQ(t["version_header"], gl::version_header(gl::Dialect::webgl2));
+  EXPECT_THAT(t["function"].get<std::string>(), HasSubstr(glsl::model_glsl(m)));
+  EXPECT_EQ(t["entry_params"].get<std::vector<float>>()[0], glsl::model_params(m)[0]);
+  EXPECT_EQ(t["version_header"], glsl::version_header(glsl::Dialect::webgl2));
   EXPECT_THAT(ok("/api/glsl", {{"model", "ggx"}, {"dialect", "glsl330"}})["function"].get<std::string>(), HasSubstr("GLSL 3.30"));
   EXPECT_FALSE(t.contains("fragment_shader"));
 }
@@ -171,11 +171,12 @@ TEST_F(ServeApi, GlslGivesTheModelsFunctionAndHowToCallIt) {
 TEST_F(ServeApi, GlslWithShaderGivesTheSceneShaderAndItsUniforms) {
   const json t = ok("/api/glsl", {{"model", "schlick"}, {"shader", true}, {"light", {0, 0, 1}}, {"size", {64, 48}}});
   const Model m = make_model("schlick");
-  EXPECT_EQ(t["fragment_shader"], gl::scene_fragment_shader(m, gl::Dialect::webgl2, gl::SceneGeometry::spheres));
-  EXPECT_EQ(t["vertex_shader"], gl::scene_vertex_shader(gl::Dialect::webgl2));
+  EXPECT_EQ(t["fragment_shader"],
+            render::scene_fragment_shader(m, glsl::Dialect::webgl2, render::SceneGeometry::spheres));
+  EXPECT_EQ(t["vertex_shader"], render::scene_vertex_shader(glsl::Dialect::webgl2));
   render::Scene scene = render::default_scene(m);
   scene.lights[0].direction = {0, 0, 1};
-  const gl::SceneUniforms u = gl::scene_uniforms(scene, {64, 48}, render::Display{});
+  const render::SceneUniforms u = render::scene_uniforms(scene, {64, 48}, render::Display{});
   const json& uniforms = t["uniforms"];
   EXPECT_EQ(uniforms["u_resolution"].get<std::vector<float>>(), std::vector<float>({64, 48}));
   EXPECT_EQ(uniforms["u_lights"][0].get<std::vector<float>>(), std::vector<float>(u.lights[0].begin(), u.lights[0].end()));

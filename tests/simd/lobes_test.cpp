@@ -38,6 +38,7 @@ double reference(const LobeSpec& lobe, double c) {
     case Family::schlick_modified: return lobes::SchlickModified<double>{lobe.n, lobe.s}(c);
     case Family::gauss: return lobes::Gauss<double>{lobe.n}(c);
     case Family::log: return lobes::Log<double>{lobe.n}(c);
+    case Family::formula: return (*lobe.formula)(c);  // a user's lobe (tests/models/)
   }
   return NAN;
 }

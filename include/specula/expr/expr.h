@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 
 namespace specula::expr {
 

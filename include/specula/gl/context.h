@@ -6,12 +6,12 @@
 // list one (a device without EGL_MESA_device_software), else Mesa's surfaceless platform
 // (llvmpipe on a machine without a GPU). The environment variable SPECULA_EGL_PLATFORM=device or
 // =surfaceless tries only that kind. Part of the separate library specula_gl, which links
-// libEGL and libOpenGL (glvnd); libspecula itself needs neither.
+// libEGL and libOpenGL (glvnd); no other specula library needs either.
 #include <memory>
 #include <string>
 #include <string_view>
 
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/render/image.h"
 
 namespace specula::gl {

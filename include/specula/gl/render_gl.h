@@ -1,15 +1,15 @@
 #pragma once
 // The GL renderer: render_cpu's image (include/specula/render/render.h) from the scene shader
-// (gl/scene_shader.h) run in an offscreen OpenGL context (gl/context.h), in float throughout.
+// (render/scene_shader.h) run in an offscreen OpenGL context (gl/context.h), in float throughout.
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "specula/gl/context.h"
-#include "specula/gl/scene_shader.h"
 #include "specula/render/image.h"
 #include "specula/render/render.h"
 #include "specula/render/scene.h"
+#include "specula/render/scene_shader.h"
 
 namespace specula::gl {
 
@@ -25,14 +25,14 @@ class Renderer {
 
   /// Compiles and links the scene shader for `model` and `geometry` unless the current program is
   /// already that one; returns the milliseconds that took (0 when nothing was compiled). render()
-  /// calls it with geometry_of(scene).
-  double prepare(const Model& model, SceneGeometry geometry);
+  /// calls it with render::geometry_of(scene).
+  double prepare(const Model& model, render::SceneGeometry geometry);
 
   /// The linear radiance image of `scene` (rows top-down), as render_cpu computes it but in float;
   /// with `display`, the display values of render/image.h in [0, 1] instead (sRGB-encoded, not
   /// rounded). Throws InvalidArgument as render_cpu does, and for a scene beyond the shader's
-  /// limits (kMaxSpheres, kMaxLights, a mesh larger than the driver's textures); GlError when the
-  /// driver fails.
+  /// limits (render::kShaderMaxSpheres, render::kShaderMaxLights, a mesh larger than the driver's
+  /// textures); GlError when the driver fails.
   render::Image render(const render::Scene& scene, const render::RenderSettings& settings,
                        const std::optional<render::Display>& display = std::nullopt);
 

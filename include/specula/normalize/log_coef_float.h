@@ -1,7 +1,7 @@
 #pragma once
 // The log lobe's exact normalization coef(n) (docs/math.md §4) for float shaders: two Chebyshev
 // series fitted by scripts/make_log_coef_fit.py, evaluated in float by Clenshaw's recurrence.
-// This is the arithmetic the emitted GLSL (gl/glsl.h, specula_log_coef) performs, so the test of
+// This is the arithmetic the emitted GLSL (glsl/glsl.h, specula_log_coef) performs, so the test of
 // this function states the shader's error too.
 #include <numbers>
 #include <span>

@@ -1,7 +1,7 @@
-// The scene shader's text and values (include/specula/gl/scene_shader.h): every shader accepted by
+// The scene shader's text and values (include/specula/render/scene_shader.h): every shader accepted by
 // glslangValidator for every model and dialect, ASCII and cited, the uniforms documented; the
 // uniform values and mesh textures laid out as the shader reads them; the limits.
-#include "specula/gl/scene_shader.h"
+#include "specula/render/scene_shader.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,18 +11,18 @@
 #include <set>
 
 #include "glsl_support.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "text_support.h"
 
-namespace specula::gl {
+namespace specula::render {
 namespace {
 
 using ::testing::HasSubstr;
 
-constexpr Dialect kDialects[] = {Dialect::glsl330, Dialect::gles300, Dialect::webgl2};
+constexpr glsl::Dialect kDialects[] = {glsl::Dialect::glsl330, glsl::Dialect::gles300, glsl::Dialect::webgl2};
 
 TEST(SceneShader, EveryModelsShadersPassGlslangInEveryDialect) {
-  for (const Dialect dialect : kDialects) {
+  for (const glsl::Dialect dialect : kDialects) {
     const auto vertex = testing::validate_glsl(scene_vertex_shader(dialect), "vert");
     EXPECT_TRUE(vertex.ok) << to_string(dialect) << "\n" << vertex.log;
     const auto spheres = testing::validate_glsl(
@@ -36,26 +36,26 @@ TEST(SceneShader, EveryModelsShadersPassGlslangInEveryDialect) {
 }
 
 TEST(SceneShader, TheGeometryIsOneDefineAViewerCanOverride) {
-  const std::string mesh = scene_fragment_shader(make_model("ggx"), Dialect::glsl330);
-  const std::string spheres = scene_fragment_shader(make_model("ggx"), Dialect::glsl330, SceneGeometry::spheres);
+  const std::string mesh = scene_fragment_shader(make_model("ggx"), glsl::Dialect::glsl330);
+  const std::string spheres = scene_fragment_shader(make_model("ggx"), glsl::Dialect::glsl330, SceneGeometry::spheres);
   EXPECT_THAT(mesh, HasSubstr("#ifndef SCENE_MESH\n#define SCENE_MESH 1\n#endif"));
   EXPECT_THAT(spheres, HasSubstr("#ifndef SCENE_MESH\n#define SCENE_MESH 0\n#endif"));
   EXPECT_EQ(std::regex_replace(spheres, std::regex("#define SCENE_MESH 0"), "#define SCENE_MESH 1"), mesh);
-  render::Scene scene = render::default_scene(make_model("ggx"));
+  Scene scene = default_scene(make_model("ggx"));
   EXPECT_EQ(geometry_of(scene), SceneGeometry::spheres);
   scene.triangles.push_back({});
   EXPECT_EQ(geometry_of(scene), SceneGeometry::spheres_and_mesh);
 }
 
 TEST(SceneShader, GlslangRejectsTheShaderWithAPieceMissing) {
-  const std::string shader = scene_fragment_shader(make_model("ggx"), Dialect::gles300);
+  const std::string shader = scene_fragment_shader(make_model("ggx"), glsl::Dialect::gles300);
   const std::string no_offset = std::regex_replace(shader, std::regex("uniform vec2 u_pixel_offset;"), "");
   EXPECT_FALSE(testing::validate_glsl(no_offset, "frag").ok);
 }
 
 TEST(SceneShader, AsciiOnlyAndEveryFunctionCitedOnItsFirstLine) {
   const std::regex definition(R"(^(float|bool|vec3|vec4|void|SceneSurface) (\w+)\(.*\) \{$)");
-  const std::string shader = scene_fragment_shader(make_model("log-normalized", {{"n", 50}}), Dialect::glsl330);
+  const std::string shader = scene_fragment_shader(make_model("log-normalized", {{"n", 50}}), glsl::Dialect::glsl330);
   for (const char ch : shader) ASSERT_LT(static_cast<unsigned char>(ch), 0x80);
   const auto lines = testing::lines_of(shader);
   std::set<std::string> functions;
@@ -73,7 +73,7 @@ TEST(SceneShader, AsciiOnlyAndEveryFunctionCitedOnItsFirstLine) {
 }
 
 TEST(SceneShader, DocumentsEveryUniformWithTheDefaultScenesValue) {
-  const std::string shader = scene_fragment_shader(make_model("phong"), Dialect::webgl2);
+  const std::string shader = scene_fragment_shader(make_model("phong"), glsl::Dialect::webgl2);
   const std::regex declaration(R"(^uniform (highp )?(\w+) (\w+)(\[\w+\])?;$)");
   int uniforms = 0;
   for (const std::string& line : testing::lines_of(shader)) {
@@ -92,11 +92,11 @@ TEST(SceneShader, DocumentsEveryUniformWithTheDefaultScenesValue) {
 }
 
 TEST(SceneUniforms, CameraLightsAndMaterialAsPinholeRaysAndTheShaderNeedThem) {
-  render::Scene scene = render::default_scene(make_model("schlick-modified", {{"n", 7}, {"s", 2}}));
+  Scene scene = default_scene(make_model("schlick-modified", {{"n", 7}, {"s", 2}}));
   scene.camera = {{1, 2, 3}, {1, 2, 0}, {0, 1, 0}, 90};
-  scene.lights = {render::parse_light("dir:0,0,2:1,0.5,0.25:2"), render::parse_light("point:1,2,3:1,1,1:9")};
+  scene.lights = {parse_light("dir:0,0,2:1,0.5,0.25:2"), parse_light("point:1,2,3:1,1,1:9")};
   scene.spheres.push_back({{1, 1, 1}, 0.5});
-  const SceneUniforms u = scene_uniforms(scene, {200, 100}, render::Display{1.5, render::ToneMap::aces});
+  const SceneUniforms u = scene_uniforms(scene, {200, 100}, Display{1.5, ToneMap::aces});
   EXPECT_EQ(u.resolution, (std::array<float, 2>{200, 100}));
   EXPECT_EQ(u.eye, (std::array<float, 3>{1, 2, 3}));
   EXPECT_EQ(u.forward, (std::array<float, 3>{0, 0, -1}));
@@ -115,7 +115,7 @@ TEST(SceneUniforms, CameraLightsAndMaterialAsPinholeRaysAndTheShaderNeedThem) {
   EXPECT_EQ(scene_uniforms(scene, {1, 1}).display, 0);
 }
 
-std::string error_of(const render::Scene& scene, const render::RenderSettings& settings) {
+std::string error_of(const Scene& scene, const RenderSettings& settings) {
   try {
     scene_uniforms(scene, settings);
   } catch (const InvalidArgument& e) {
@@ -125,37 +125,37 @@ std::string error_of(const render::Scene& scene, const render::RenderSettings& s
 }
 
 TEST(SceneUniforms, RefusesWhatTheShaderCannotHoldAndWhatRenderCpuRefuses) {
-  render::Scene scene = render::default_scene(make_model("phong"));
-  scene.spheres.assign(kMaxSpheres, render::Sphere{});
+  Scene scene = default_scene(make_model("phong"));
+  scene.spheres.assign(kShaderMaxSpheres, Sphere{});
   EXPECT_EQ(error_of(scene, {8, 8}), "no error");
   scene.spheres.push_back({});
   EXPECT_EQ(error_of(scene, {8, 8}), "the GL renderer draws at most 16 spheres; the scene has 17");
-  scene.spheres = {render::Sphere{}};
-  scene.lights.assign(kMaxLights + 1, render::Light{});
+  scene.spheres = {Sphere{}};
+  scene.lights.assign(kShaderMaxLights + 1, Light{});
   EXPECT_EQ(error_of(scene, {8, 8}), "the GL renderer takes at most 8 lights; the scene has 9");
-  scene.lights = {render::Light{}};
+  scene.lights = {Light{}};
   EXPECT_THAT(error_of(scene, {0, 8}), HasSubstr("image size 0x8 is invalid"));
-  EXPECT_THAT(error_of(scene, {8, render::kMaxImageSide + 1}), HasSubstr("is invalid"));
+  EXPECT_THAT(error_of(scene, {8, kMaxImageSide + 1}), HasSubstr("is invalid"));
   scene.spheres[0].radius = -1;
   EXPECT_THAT(error_of(scene, {8, 8}), HasSubstr("radius"));
 }
 
-render::Triangle triangle(Vec3 a, Vec3 b, Vec3 c) {
+Triangle triangle(Vec3 a, Vec3 b, Vec3 c) {
   return {{a, b, c}, {Vec3{0, 0, 1}, Vec3{0, 1, 0}, Vec3{1, 0, 0}}, true};
 }
 
 TEST(MeshTextures, TrianglesInLeafOrderAndNodesAsTheShaderReadsThem) {
-  std::vector<render::Triangle> soup;
+  std::vector<Triangle> soup;
   for (int i = 0; i < 9; ++i) soup.push_back(triangle({0.1 * i, 0, 0}, {0.1 * i + 1, 0, 0}, {0.1 * i, 1, 1.0 / 3}));
   soup[4].has_normals = false;
-  const render::Bvh bvh(soup);
+  const Bvh bvh(soup);
   const MeshTextures mesh = mesh_textures(bvh, 7);
   EXPECT_EQ(mesh.width, 7);
   EXPECT_EQ(mesh.triangle_rows, 8);  // 54 texels in rows of 7
   EXPECT_EQ(mesh.triangles.size(), 4u * 7 * 8);
   EXPECT_EQ(mesh.node_rows, static_cast<int>((2 * bvh.node_count() + 6) / 7));
   for (std::size_t i = 0; i < bvh.size(); ++i) {
-    const render::Triangle& t = bvh.triangles()[i];
+    const Triangle& t = bvh.triangles()[i];
     const float* texels = &mesh.triangles[24 * i];
     EXPECT_EQ(texels[0], static_cast<float>(t.vertices[0].x));
     EXPECT_EQ(texels[3], t.has_normals ? 1.0f : 0.0f);
@@ -164,7 +164,7 @@ TEST(MeshTextures, TrianglesInLeafOrderAndNodesAsTheShaderReadsThem) {
     EXPECT_EQ(texels[13], static_cast<float>(t.normals[0].y));                      // n0.y
   }
   for (std::size_t i = 0; i < bvh.node_count(); ++i) {
-    const render::Bvh::Node& node = bvh.nodes()[i];
+    const Bvh::Node& node = bvh.nodes()[i];
     const float* texels = &mesh.nodes[8 * i];
     EXPECT_LE(texels[2], node.box.min.z);  // rounded outward: 1/3 is not a float
     EXPECT_GE(texels[6], node.box.max.z);
@@ -176,11 +176,11 @@ TEST(MeshTextures, TrianglesInLeafOrderAndNodesAsTheShaderReadsThem) {
 }
 
 TEST(MeshTextures, AnEmptyMeshIsOneRowOfZeros) {
-  const MeshTextures mesh = mesh_textures(render::Bvh({}), 16);
+  const MeshTextures mesh = mesh_textures(Bvh({}), 16);
   EXPECT_EQ(mesh.triangle_rows, 1);
   EXPECT_EQ(mesh.node_rows, 1);
   EXPECT_EQ(mesh.nodes, std::vector<float>(64, 0.0f));
 }
 
 }  // namespace
-}  // namespace specula::gl
+}  // namespace specula::render

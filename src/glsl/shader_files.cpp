@@ -1,10 +1,10 @@
-#include "src/gl/shader_files.h"
+#include "src/glsl/shader_files.h"
 
 #include <algorithm>
 #include <fmt/format.h>
 #include <stdexcept>
 
-namespace specula::gl {
+namespace specula::glsl {
 
 const ShaderFile* find_shader_file(std::string_view path) noexcept {
   const auto all = embedded_shaders();
@@ -14,7 +14,7 @@ const ShaderFile* find_shader_file(std::string_view path) noexcept {
 
 std::string_view shader_file(std::string_view path) {
   const ShaderFile* file = find_shader_file(path);
-  if (!file) throw std::logic_error(fmt::format("no shader file '{}' in src/gl/shaders/", path));
+  if (!file) throw std::logic_error(fmt::format("no shader file '{}' in src/glsl/shaders/", path));
   return file->text;
 }
 
@@ -57,4 +57,4 @@ void ShaderSource::add_file(std::string_view path) {
   text_ += fill(body, values_);
 }
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

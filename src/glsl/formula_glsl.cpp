@@ -1,10 +1,10 @@
-// GLSL for formula models (src/gl/formula_glsl.h): each step printed by expr::to_glsl with the
+// GLSL for formula models (src/glsl/formula_glsl.h): each step printed by expr::to_glsl with the
 // slots renamed.
 #include "formula_glsl.h"
 
 #include <fmt/format.h>
 
-namespace specula::gl {
+namespace specula::glsl {
 namespace {
 
 /// `e` over GLSL names: inputs kept, parameters p_NAME, lets l_NAME.
@@ -37,4 +37,4 @@ std::string coefficient_formula(const expr::Program& coefficient) {
   return "(" + expr::to_glsl(renamed(coefficient.result(), coefficient)) + ")";
 }
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

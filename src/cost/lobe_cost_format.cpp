@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "specula/bench/lobe_bench.h"
+#include "specula/cost/lobe_cost.h"
 
-namespace specula::bench {
+namespace specula::cost {
 namespace {
 
 using simd::Family;
@@ -168,4 +168,4 @@ std::string to_json(const Result& result) {
   return j.dump(2) + "\n";
 }
 
-}  // namespace specula::bench
+}  // namespace specula::cost

@@ -1,16 +1,16 @@
 #pragma once
-// The GLSL files of src/gl/shaders/ (compiled in by cmake/embed_assets.cmake) and a shader's text
-// put together from them. Not installed: gl/glsl.h and gl/scene_shader.h are the library's view.
+// The GLSL files of src/glsl/shaders/ (compiled in by cmake/embed_assets.cmake) and a shader's text
+// put together from them. Not installed: glsl/glsl.h and render/scene_shader.h are the library's view.
 #include <map>
 #include <set>
 #include <span>
 #include <string>
 #include <string_view>
 
-namespace specula::gl {
+namespace specula::glsl {
 
 struct ShaderFile {
-  std::string_view path;  ///< below src/gl/shaders/: "lobes/log.glsl"
+  std::string_view path;  ///< below src/glsl/shaders/: "lobes/log.glsl"
   std::string_view text;
 };
 
@@ -47,4 +47,4 @@ class ShaderSource {
   std::string text_;
 };
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

@@ -1,8 +1,8 @@
-// The GLSL files of src/gl/shaders/ (src/gl/shader_files.h): each cites its source on its first
+// The GLSL files of src/glsl/shaders/ (src/glsl/shader_files.h): each cites its source on its first
 // line and is ASCII; each is part of some emitted shader (no family's file lies unused); each
 // coefficient file belongs to a normalized lobe model; and how a shader is put together from them
 // (includes once and first, placeholders filled), with the failures of each.
-#include "src/gl/shader_files.h"
+#include "src/glsl/shader_files.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "specula/gl/scene_shader.h"
+#include "specula/render/scene_shader.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 namespace {
 
 TEST(ShaderFiles, EachCitesItsSourceOnItsFirstLineAndIsAscii) {
@@ -30,15 +30,15 @@ TEST(ShaderFiles, EachCitesItsSourceOnItsFirstLineAndIsAscii) {
 /// Every shader specula emits: the vertex shader and each model's scene shader (which holds its
 /// model_glsl), in every form, but for the models `left_out`.
 std::string emitted_shaders(const std::vector<std::string>& left_out = {}) {
-  std::string all = scene_vertex_shader(Dialect::glsl330);
+  std::string all = render::scene_vertex_shader(Dialect::glsl330);
   for (const auto& info : models()) {
     if (std::find(left_out.begin(), left_out.end(), info.id) != left_out.end()) continue;
     if (info.kind == ModelKind::brdf) {
-      all += scene_fragment_shader(make_model(info.id), Dialect::glsl330);
+      all += render::scene_fragment_shader(make_model(info.id), Dialect::glsl330);
       continue;
     }
     for (const Form form : {Form::rv, Form::nh})
-      all += scene_fragment_shader(make_model(info.id, {}, form), Dialect::glsl330);
+      all += render::scene_fragment_shader(make_model(info.id, {}, form), Dialect::glsl330);
   }
   return all;
 }
@@ -112,4 +112,4 @@ TEST(ShaderSource, PlaceholdersAndMissingFilesFailLoudly) {
 }
 
 }  // namespace
-}  // namespace specula::gl
+}  // namespace specula::glsl

@@ -7,7 +7,7 @@
 #include "specula/expr/program.h"
 #include "specula/models/model.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 
 /// "p_NAME": a parameter's name in GLSL.
 std::string glsl_param_name(std::string_view name);
@@ -18,4 +18,4 @@ std::string program_lines(const expr::Program& program);
 /// The GLSL expression for k of a formula-normalized lobe, in the p_ parameters.
 std::string coefficient_formula(const expr::Program& coefficient);
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

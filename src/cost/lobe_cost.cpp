@@ -1,7 +1,7 @@
-// The lobe benchmark's measurements (include/specula/bench/lobe_bench.h). Timings are the fastest
+// The lobe benchmark's measurements (include/specula/cost/lobe_cost.h). Timings are the fastest
 // of several trials (other work on the machine only slows a trial down) and go round the rows in
 // turn, so that a disturbance hits one trial of several rows rather than every trial of one.
-#include "specula/bench/lobe_bench.h"
+#include "specula/cost/lobe_cost.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,10 +14,10 @@
 #include <tbb/task_arena.h>
 
 #include "specula/analysis/error.h"
-#include "specula/error.h"
+#include "specula/exceptions.h"
 #include "specula/simd/targets.h"
 
-namespace specula::bench {
+namespace specula::cost {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -368,4 +368,4 @@ Result run(const Settings& settings, const std::function<void(std::string_view)>
   return result;
 }
 
-}  // namespace specula::bench
+}  // namespace specula::cost

@@ -4,7 +4,8 @@
 // cache and streaming from memory, on one core and on all of them (oneTBB); the accuracy of each
 // path against the scalar double lobe and each lobe's distance from cⁿ; the machine's two limits
 // (its peak vector rate times the kernel's operations, and its streaming bandwidth) and each
-// lobe's distance from the nearer one. docs/simd.md explains how to read it.
+// lobe's distance from the nearer one. docs/simd.md explains how to read it. (Module `cost`, the
+// measurement as a library function; bench/ at the top holds the Google Benchmark programs.)
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -13,7 +14,7 @@
 
 #include "specula/simd/lobes.h"
 
-namespace specula::bench {
+namespace specula::cost {
 
 /// Which implementation evaluates the lobe.
 enum class Path { scalar, exact, fast };  ///< scalar: the lobe struct per value (std::pow, log2…)
@@ -88,4 +89,4 @@ std::string to_json(const Result& result);
 
 const char* family_name(simd::Family family) noexcept;
 
-}  // namespace specula::bench
+}  // namespace specula::cost

@@ -1,14 +1,14 @@
-#include "specula/gl/scene_shader.h"
+#include "specula/render/scene_shader.h"
 
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
 #include "specula/brdf/directions.h"
-#include "specula/error.h"
-#include "src/gl/shader_files.h"
+#include "specula/exceptions.h"
+#include "src/glsl/shader_files.h"
 
-namespace specula::gl {
+namespace specula::render {
 namespace {
 
 // --- The uniforms' documentation, with the default scene's values ---
@@ -25,13 +25,13 @@ std::string numbers(const std::array<float, N>& values) {
 }
 
 std::string uniform_documentation(const Model& model) {
-  const render::RenderSettings size{512, 512};
-  const SceneUniforms d = scene_uniforms(render::default_scene(model), size);
+  const RenderSettings size{512, 512};
+  const SceneUniforms d = scene_uniforms(default_scene(model), size);
   std::string text = fmt::format(
       "// specula scene shader: the CPU renderer's pixel (render/render.h, docs/math.md 5) with model '{}'.\n"
       "// Draw 3 vertices of scene_vertex_shader over the image (or tiles of it) and set every uniform;\n"
-      "// specula's gl::scene_uniforms and gl::mesh_textures compute them from a render::Scene. The\n"
-      "// default scene's values at 512x512 are in brackets: a unit sphere lit from the upper left front.\n",
+      "// specula's render::scene_uniforms and render::mesh_textures compute them from a scene.\n"
+      "// The default scene's values at 512x512 are in brackets: a unit sphere lit from the upper left front.\n",
       model.id());
   const std::vector<std::pair<std::string, std::string>> rows{
       {"vec2 u_resolution", fmt::format("whole image, pixels [{}]", numbers(d.resolution))},
@@ -40,9 +40,9 @@ std::string uniform_documentation(const Model& model) {
       {"vec3 u_forward", fmt::format("unit view direction [{}]", numbers(d.forward))},
       {"vec3 u_right", fmt::format("unit right * tan(fov/2) * width/height [{}]", numbers(d.right))},
       {"vec3 u_up", fmt::format("unit up * tan(fov/2) [{}]", numbers(d.up))},
-      {"int u_sphere_count", fmt::format("spheres used, <= {} [{}]", kMaxSpheres, d.spheres.size())},
+      {"int u_sphere_count", fmt::format("spheres used, <= {} [{}]", kShaderMaxSpheres, d.spheres.size())},
       {"vec4 u_spheres[]", fmt::format("centre, radius [{}]", numbers(d.spheres[0]))},
-      {"int u_light_count", fmt::format("lights used, <= {} [{}]", kMaxLights, d.lights.size())},
+      {"int u_light_count", fmt::format("lights used, <= {} [{}]", kShaderMaxLights, d.lights.size())},
       {"vec4 u_lights[]", fmt::format("w 0: unit direction toward the light; w 1: position [{}]", numbers(d.lights[0]))},
       {"vec3 u_light_irradiance[]", fmt::format("colour * intensity, E; points: / d^2 [{}]", numbers(d.light_irradiance[0]))},
       {"vec3 u_diffuse", fmt::format("rho_d, Lambert albedo [{}]", numbers(d.diffuse))},
@@ -66,7 +66,7 @@ std::array<float, 3> to_float(const Vec3& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
 }
 
-std::array<float, 3> to_float(const render::Rgb& c) {
+std::array<float, 3> to_float(const Rgb& c) {
   return {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
 }
 
@@ -89,14 +89,14 @@ int pad_rows(std::vector<float>& data, int width) {
   return static_cast<int>(rows);
 }
 
-// render::Image's size limits (render_cpu's), without allocating the image.
-void check_size(const render::RenderSettings& s) {
-  if (s.width < 1 || s.height < 1 || s.width > render::kMaxImageSide || s.height > render::kMaxImageSide)
+// The Image's size limits (render_cpu's), without allocating the image.
+void check_size(const RenderSettings& s) {
+  if (s.width < 1 || s.height < 1 || s.width > kMaxImageSide || s.height > kMaxImageSide)
     throw InvalidArgument(fmt::format("image size {}x{} is invalid: width and height must be in [1, {}]", s.width,
-                                      s.height, render::kMaxImageSide));
+                                      s.height, kMaxImageSide));
 }
 
-void set_camera(SceneUniforms& u, const render::Camera& camera, const render::RenderSettings& settings) {
+void set_camera(SceneUniforms& u, const Camera& camera, const RenderSettings& settings) {
   // PinholeRays (render.cpp), in double, then rounded.
   const Vec3 forward = normalized(camera.look_at - camera.position);
   const Vec3 right = normalized(cross(forward, camera.up));
@@ -108,9 +108,9 @@ void set_camera(SceneUniforms& u, const render::Camera& camera, const render::Re
   u.up = to_float(up * tan_half);
 }
 
-void set_lights(SceneUniforms& u, const std::vector<render::Light>& lights) {
-  for (const render::Light& light : lights) {
-    const bool directional = light.kind == render::LightKind::directional;
+void set_lights(SceneUniforms& u, const std::vector<Light>& lights) {
+  for (const Light& light : lights) {
+    const bool directional = light.kind == LightKind::directional;
     const auto xyz = to_float(directional ? normalized(light.direction) : light.position);
     u.lights.push_back({xyz[0], xyz[1], xyz[2], directional ? 0.0f : 1.0f});
     u.light_irradiance.push_back(to_float(light.colour * light.intensity));
@@ -119,72 +119,72 @@ void set_lights(SceneUniforms& u, const std::vector<render::Light>& lights) {
 
 }  // namespace
 
-SceneGeometry geometry_of(const render::Scene& scene) noexcept {
+SceneGeometry geometry_of(const Scene& scene) noexcept {
   return scene.triangles.empty() ? SceneGeometry::spheres : SceneGeometry::spheres_and_mesh;
 }
 
-std::string scene_vertex_shader(Dialect dialect) {
-  return version_header(dialect) + std::string(shader_file("scene/vertex.glsl"));
+std::string scene_vertex_shader(glsl::Dialect dialect) {
+  return glsl::version_header(dialect) + std::string(glsl::shader_file("scene/vertex.glsl"));
 }
 
-std::string scene_fragment_shader(const Model& model, Dialect dialect, SceneGeometry geometry) {
-  ShaderSource src({{"mesh", geometry == SceneGeometry::spheres ? "0" : "1"},
-                    {"max_spheres", std::to_string(kMaxSpheres)},
-                    {"max_lights", std::to_string(kMaxLights)},
-                    {"bvh_stack", std::to_string(kBvhStackSize)}});
+std::string scene_fragment_shader(const Model& model, glsl::Dialect dialect, SceneGeometry geometry) {
+  glsl::ShaderSource src({{"mesh", geometry == SceneGeometry::spheres ? "0" : "1"},
+                          {"max_spheres", std::to_string(kShaderMaxSpheres)},
+                          {"max_lights", std::to_string(kShaderMaxLights)},
+                          {"bvh_stack", std::to_string(kShaderBvhStackSize)}});
   src.add_file("scene/uniforms.glsl");
-  src.add("model", model_glsl(model));
+  src.add("model", glsl::model_glsl(model));
   src.add_file("scene/main.glsl");
-  return version_header(dialect) + uniform_documentation(model) + src.take();
+  return glsl::version_header(dialect) + uniform_documentation(model) + src.take();
 }
 
-SceneUniforms scene_uniforms(const render::Scene& scene, const render::RenderSettings& settings,
-                             const std::optional<render::Display>& display) {
+SceneUniforms scene_uniforms(const Scene& scene, const RenderSettings& settings,
+                             const std::optional<Display>& display) {
   check_size(settings);
-  render::validate(scene);
-  if (scene.triangles.size() >= kMaxMeshElements)
+  validate(scene);
+  if (scene.triangles.size() >= kShaderMaxMeshElements)
     throw InvalidArgument(fmt::format("the GL renderer takes fewer than {} triangles; the scene has {}",
-                                      kMaxMeshElements, scene.triangles.size()));
-  if (scene.spheres.size() > static_cast<std::size_t>(kMaxSpheres))
-    throw InvalidArgument(fmt::format("the GL renderer draws at most {} spheres; the scene has {}", kMaxSpheres,
+                                      kShaderMaxMeshElements, scene.triangles.size()));
+  if (scene.spheres.size() > static_cast<std::size_t>(kShaderMaxSpheres))
+    throw InvalidArgument(fmt::format("the GL renderer draws at most {} spheres; the scene has {}", kShaderMaxSpheres,
                                       scene.spheres.size()));
-  if (scene.lights.size() > static_cast<std::size_t>(kMaxLights))
-    throw InvalidArgument(fmt::format("the GL renderer takes at most {} lights; the scene has {}", kMaxLights,
+  if (scene.lights.size() > static_cast<std::size_t>(kShaderMaxLights))
+    throw InvalidArgument(fmt::format("the GL renderer takes at most {} lights; the scene has {}", kShaderMaxLights,
                                       scene.lights.size()));
   SceneUniforms u;
   u.resolution = {static_cast<float>(settings.width), static_cast<float>(settings.height)};
   set_camera(u, scene.camera, settings);
-  for (const render::Sphere& s : scene.spheres) {
+  for (const Sphere& s : scene.spheres) {
     const auto c = to_float(s.centre);
     u.spheres.push_back({c[0], c[1], c[2], static_cast<float>(s.radius)});
   }
   set_lights(u, scene.lights);
-  const render::Material& m = scene.material;
+  const Material& m = scene.material;
   u.diffuse = to_float(m.diffuse);
   u.specular = to_float(m.specular);
   u.ambient = to_float(m.ambient);
   u.background = to_float(scene.background);
-  u.model_params = model_params(m.model);
+  u.model_params = glsl::model_params(m.model);
   u.triangle_count = static_cast<int>(scene.triangles.size());
   if (display) {
     u.display = 1;
     u.exposure = static_cast<float>(display->exposure);
-    u.tone_map = display->tone_map == render::ToneMap::aces ? 1 : 0;
+    u.tone_map = display->tone_map == ToneMap::aces ? 1 : 0;
   }
   return u;
 }
 
-MeshTextures mesh_textures(const render::Bvh& bvh, int width) {
+MeshTextures mesh_textures(const Bvh& bvh, int width) {
   if (width < 1) throw InvalidArgument(fmt::format("texture width {} is invalid: it must be >= 1", width));
-  if (bvh.size() >= kMaxMeshElements || bvh.node_count() >= kMaxMeshElements)
+  if (bvh.size() >= kShaderMaxMeshElements || bvh.node_count() >= kShaderMaxMeshElements)
     throw InvalidArgument(fmt::format("the GL renderer takes fewer than {} triangles; the mesh has {}",
-                                      kMaxMeshElements, bvh.size()));
-  if (bvh.depth() + 1 > static_cast<std::size_t>(kBvhStackSize))
+                                      kShaderMaxMeshElements, bvh.size()));
+  if (bvh.depth() + 1 > static_cast<std::size_t>(kShaderBvhStackSize))
     throw InvalidArgument(fmt::format("the mesh's BVH is {} levels deep; the GL renderer's stack holds {}",
-                                      bvh.depth(), kBvhStackSize - 1));
+                                      bvh.depth(), kShaderBvhStackSize - 1));
   MeshTextures mesh;
   mesh.width = width;
-  for (const render::Triangle& t : bvh.triangles()) {
+  for (const Triangle& t : bvh.triangles()) {
     const auto& [p0, p1, p2] = t.vertices;
     put_texel(mesh.triangles, to_float(p0), t.has_normals ? 1.0f : 0.0f);
     put_texel(mesh.triangles, to_float(p1 - p0), 0);
@@ -192,7 +192,7 @@ MeshTextures mesh_textures(const render::Bvh& bvh, int width) {
     for (const Vec3& n : t.normals) put_texel(mesh.triangles, to_float(n), 0);
   }
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  for (const render::Bvh::Node& node : bvh.nodes()) {
+  for (const Bvh::Node& node : bvh.nodes()) {
     const Vec3 &lo = node.box.min, &hi = node.box.max;
     put_texel(mesh.nodes, {rounded_toward(lo.x, -kInf), rounded_toward(lo.y, -kInf), rounded_toward(lo.z, -kInf)},
               static_cast<float>(node.first));
@@ -204,4 +204,4 @@ MeshTextures mesh_textures(const render::Bvh& bvh, int width) {
   return mesh;
 }
 
-}  // namespace specula::gl
+}  // namespace specula::render

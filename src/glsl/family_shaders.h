@@ -1,5 +1,5 @@
 #pragma once
-// Each model family's GLSL file under src/gl/shaders/, chosen by overload: a lobe family, form or
+// Each model family's GLSL file under src/glsl/shaders/, chosen by overload: a lobe family, form or
 // full BRDF added to lobes::Lobe, Form or FullBrdf without its entry here does not compile (the
 // deleted templates; -Wswitch for the enums), where a switch on a variant's index would have
 // emitted some other family's shader. tests/gl/CMakeLists.txt compiles the negative control.
@@ -9,7 +9,7 @@
 
 #include "specula/models/model.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 
 /// A lobe family's F(c): the file that defines it, the function's name, and the arguments it
 /// takes after c and n (the model's further parameters, by their ModelInfo names).
@@ -52,7 +52,7 @@ constexpr FormShader form_shader(Form form) {
   throw std::logic_error("a form without its shader");
 }
 
-/// A full BRDF's file, which defines its entry function specula_<id> (gl::entry_name).
+/// A full BRDF's file, which defines its entry function specula_<id> (glsl::entry_name).
 template <class B>
 std::string_view brdf_shader(const B&) = delete;  // a full BRDF without its shader
 constexpr std::string_view brdf_shader(const Ward& ward) {
@@ -75,4 +75,4 @@ std::string_view brdf_shader_of(const std::variant<B...>& brdf) {
   return std::visit([](const auto& family) { return brdf_shader(family); }, brdf);
 }
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

@@ -1,4 +1,4 @@
-#include "specula/gl/glsl.h"
+#include "specula/glsl/glsl.h"
 
 #include <cctype>
 #include <cmath>
@@ -8,13 +8,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "specula/error.h"
 #include "formula_glsl.h"
+#include "specula/exceptions.h"
 #include "specula/normalize/log_coef_float.h"
-#include "src/gl/family_shaders.h"
-#include "src/gl/shader_files.h"
+#include "src/glsl/family_shaders.h"
+#include "src/glsl/shader_files.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -240,4 +240,4 @@ std::array<float, 4> model_params(const Model& model) {
   return packed;
 }
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

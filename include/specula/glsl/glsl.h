@@ -2,14 +2,14 @@
 // GLSL for every specula model (the paper's Fig. 10, for all of docs/math.md §2): self-contained
 // functions that compute, in float, what the C++ Model computes, with the exact normalization
 // evaluated in the shader. Each emitted function's first line cites its source, as Filament's
-// surface_brdf.fs does. The GLSL is in src/gl/shaders/, compiled into the library (docs/glsl.md).
+// surface_brdf.fs does. The GLSL is in src/glsl/shaders/, compiled into the library (docs/glsl.md).
 #include <array>
 #include <string>
 #include <string_view>
 
 #include "specula/models/model.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 
 /// The GLSL dialects specula emits: desktop GLSL 3.30 core, GLSL ES 3.00, and WebGL 2 (whose
 /// shading language is GLSL ES 3.00; emitted identically, named for the user's benefit).
@@ -48,4 +48,4 @@ std::string entry_name(const Model& model);
 /// "2.02299907e-09").
 std::string float_literal(double value);
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

@@ -1,9 +1,9 @@
-// The negative control of src/gl/family_shaders.h, compiled (never linked or run) by
+// The negative control of src/glsl/family_shaders.h, compiled (never linked or run) by
 // tests/gl/CMakeLists.txt: a lobe family or full BRDF in a variant without its shader overload
 // does not compile; with SPECULA_WITH_SHADERS, which gives both their overloads, it does.
-#include "src/gl/family_shaders.h"
+#include "src/glsl/family_shaders.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 
 struct NewLobe {};
 struct NewBrdf {};
@@ -20,4 +20,4 @@ LobeShader lobe_file(const std::variant<lobes::Power<double>, NewLobe>& lobe) { 
 std::string_view brdf_file(const std::variant<Ggx, NewBrdf>& brdf) { return brdf_shader_of(brdf); }
 #endif
 
-}  // namespace specula::gl
+}  // namespace specula::glsl

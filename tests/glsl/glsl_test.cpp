@@ -10,12 +10,12 @@
 #include <regex>
 
 #include "glsl_support.h"
-#include "specula/error.h"
-#include "specula/gl/glsl.h"
+#include "specula/exceptions.h"
+#include "specula/glsl/glsl.h"
 #include "specula/normalize/log_coef_chebyshev.h"
 #include "text_support.h"
 
-namespace specula::gl {
+namespace specula::glsl {
 namespace {
 
 constexpr Dialect kDialects[] = {Dialect::glsl330, Dialect::gles300, Dialect::webgl2};
@@ -213,4 +213,4 @@ TEST(GlslCli, BadInputExitsWith2AndWritesNothing) {
 }
 
 }  // namespace
-}  // namespace specula::gl
+}  // namespace specula::glsl
