@@ -98,30 +98,43 @@ Formula::Formula(std::shared_ptr<const FormulaDefinition> definition, std::vecto
     half_max_ = bisect(u[j - 1], u[j], [&](double x) { return !(at_log_cos(x) < half); });
   } else half_max_ = std::isfinite(support_) && support_ > 0 ? support_ : 1.0;
 
-  // Kinks: sign changes of every min/max/abs argument, in any step, before the support end.
+  // Kinks: sign changes of every min/max/abs argument, in any step, before the support end. One
+  // sweep evaluates the program (its lets) once per grid point and every argument there; each
+  // sign change found is then refined by bisection.
   std::array<double, expr::kMaxSlots> slots{};
   std::copy(params_.begin(), params_.end(), slots.begin() + 2);
-  auto switch_value = [&](const expr::Expression& arg, double x) {
+  auto set_point = [&](double x) {
     slots[0] = std::exp(-x);
     slots[1] = x;
     (void)program.evaluate(std::span<double>(slots.data(), program.slot_names().size()));
-    return expr::evaluate_unchecked(arg, slots);
   };
   std::vector<expr::Expression> arguments;
   for (const auto& step : program.lets())
     for (auto& a : switch_arguments(step)) arguments.push_back(std::move(a));
   for (auto& a : switch_arguments(program.result())) arguments.push_back(std::move(a));
-  for (const auto& arg : arguments) {
-    double previous = switch_value(arg, u[0]);
-    for (std::size_t i = 1; i < u.size() && u[i - 1] < support_ && kinks_.size() < kMaxKinks; ++i) {
-      const double value = switch_value(arg, u[i]);
-      if ((previous > 0) != (value > 0) && !std::isnan(previous) && !std::isnan(value)) {
-        const bool positive_first = previous > 0;
-        const double kink = bisect(u[i - 1], u[i], [&](double x) { return (switch_value(arg, x) > 0) == positive_first; });
-        if (kink < support_) kinks_.push_back(kink);
-      }
-      previous = value;
+  struct SignChange {
+    std::size_t argument, point;  // between u[point − 1] and u[point]
+    bool positive_first;
+  };
+  std::vector<SignChange> changes;
+  std::vector<double> previous(arguments.size());
+  set_point(u[0]);
+  for (std::size_t a = 0; a < arguments.size(); ++a) previous[a] = expr::evaluate_unchecked(arguments[a], slots);
+  for (std::size_t i = 1; i < u.size() && u[i - 1] < support_ && changes.size() < kMaxKinks; ++i) {
+    set_point(u[i]);
+    for (std::size_t a = 0; a < arguments.size(); ++a) {
+      const double value = expr::evaluate_unchecked(arguments[a], slots);
+      if ((previous[a] > 0) != (value > 0) && !std::isnan(previous[a]) && !std::isnan(value))
+        changes.push_back({a, i, previous[a] > 0});
+      previous[a] = value;
     }
+  }
+  for (const SignChange& change : changes) {
+    const double kink = bisect(u[change.point - 1], u[change.point], [&](double x) {
+      set_point(x);
+      return (expr::evaluate_unchecked(arguments[change.argument], slots) > 0) == change.positive_first;
+    });
+    if (kink < support_) kinks_.push_back(kink);
   }
   std::sort(kinks_.begin(), kinks_.end());
   kinks_.erase(std::unique(kinks_.begin(), kinks_.end()), kinks_.end());
