@@ -11,11 +11,15 @@
 #include "specula/fit/fit.h"
 #include "specula/io/csv.h"
 #include "specula/io/values.h"
+#include "specula/queries/queries.h"
 
 namespace specula::cli {
 namespace {
 
 struct FitOptions {
+  ModelOptions model;
+  std::string n = "paper50";
+  std::optional<int> round;
   std::string data, target, vars, ops = "+,*,/", constants = "fitted", weights = "default";
   std::string metric = "rms", split = "random", choose = "parsimonious";
   std::string format = "table", emit, out;
@@ -26,7 +30,7 @@ struct FitOptions {
 };
 
 // The variables and the target, every value finite (a bad one is named by file line).
-fit::Data load(const FitOptions& o) {
+fit::Data load_csv(const FitOptions& o) {
   const io::CsvData csv = io::read_csv(o.data);
   fit::Data data;
   std::vector<std::size_t> used;
@@ -52,6 +56,23 @@ fit::Data load(const FitOptions& o) {
                                           o.data, csv.lines[r], csv.columns[c], csv.values[c][r]));
   return data;
 }
+
+/// --data FILE --target COLUMN, or --model ID: its coefficient k(n) to fit as a function of n.
+fit::Data load(const FitOptions& o) {
+  if (o.data.empty() == o.model.id.empty())
+    throw InvalidArgument("give --data FILE (columns to fit) or --model ID (to fit its normalization k(n)), one of them");
+  if (!o.data.empty()) {
+    if (o.target.empty()) throw InvalidArgument("--data needs --target COLUMN");
+    return load_csv(o);
+  }
+  if (!o.target.empty() || !o.vars.empty()) throw InvalidArgument("--target and --vars go with --data, not --model");
+  const auto n = option_values("--n", o.n, 10'000);
+  return queries::normalization_data(o.model.spec(), n, o.round, queries::Spelling::option);
+}
+
+/// What was fitted, for the output: the file, or the model's normalization.
+std::string source(const FitOptions& o) { return o.data.empty() ? o.model.id + " normalization" : o.data; }
+std::string target(const FitOptions& o) { return o.data.empty() ? "coef" : o.target; }
 
 fit::Options search_options(const FitOptions& o) {
   fit::Options s = o.search;
@@ -92,7 +113,7 @@ nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
                      {"formula", expr::to_infix(c.formula)}};
     return j;
   };
-  nlohmann::json j{{"data", o.data}, {"target", o.target}, {"metric", o.metric},
+  nlohmann::json j{{"data", source(o)}, {"target", target(o)}, {"metric", o.metric},
                    {"evaluations", r.evaluations}, {"generations", r.generations},
                    {"seconds", r.seconds}, {"stopped_by", r.stopped_by},
                    {"choose", o.choose}, {"front", nlohmann::json::array()}};
@@ -105,9 +126,9 @@ nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
 std::string emitted(const fit::Result& r, const FitOptions& o) {
   const auto& c = r.front[r.chosen];
   const std::string origin =
-      fmt::format("specula fit: {} from {} ({}), size {}, train {} {:.6g}", o.target, o.data,
+      fmt::format("specula fit: {} from {} ({}), size {}, train {} {:.6g}", target(o), source(o),
                   fmt::join(c.formula.variables(), ", "), c.size, o.metric, c.train_error);
-  return fit::emit_function(c.formula, o.emit, o.target, origin);
+  return fit::emit_function(c.formula, o.emit, target(o), origin);
 }
 
 // On a terminal: the front each time it improves, and a status line.
@@ -170,8 +191,16 @@ void run(const FitOptions& o) {
 void add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
   auto* cmd = app.add_subcommand("fit", "Symbolic regression: find closed-form formulas for a CSV column");
-  cmd->add_option("--data", o->data, "CSV file with a header line (at most 256 MiB and 10^6 rows)")->required();
-  cmd->add_option("--target", o->target, "The column to fit")->required();
+  cmd->add_option("--data", o->data, "CSV file with a header line (at most 256 MiB and 10^6 rows)");
+  cmd->add_option("--target", o->target, "The column to fit (with --data)");
+  o->model.add_optional_to(*cmd);
+  cmd->get_option("--model")->description(
+      "Instead of --data: fit this lobe model's exact coefficient k(n) as a function of n (an id, "
+      "your own with --models FILE, or inline 'lobe: FORMULA')");
+  cmd->add_option("--n", o->n, "With --model: the n values, e.g. 1:1000@50:log or paper50 (at most 10^4)")
+      ->capture_default_str();
+  cmd->add_option("--round", o->round, "With --model: round k to this many decimals, [0, 17] (as the paper's table)")
+      ->check(CLI::Range(0, 17));
   cmd->add_option("--vars", o->vars, "Variable columns, comma-separated (default: every other column)");
   cmd->add_option("--ops", o->ops, "Operators: some of + - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos")
       ->capture_default_str();
@@ -219,7 +248,8 @@ void add_fit_command(CLI::App& app) {
       "Examples:\n"
       "  specula normalize --model log --n paper50 --round 3 --out coef.csv\n"
       "  specula fit --data coef.csv --target coef --vars n --size-weights turingbot   # the paper's Fig. 8\n"
-      "  specula fit --data coef.csv --target coef --vars n --emit glsl");
+      "  specula fit --data coef.csv --target coef --vars n --emit glsl\n"
+      "  specula --models my.toml fit --model my-lobe --n 1:1000@50:log   # k(n) of your lobe");
   cmd->callback([o] { run(*o); });
 }
 

@@ -46,6 +46,10 @@ void require_slot_name(std::string_view name, std::string_view what) {
                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
   if (!identifier)
     throw InvalidArgument(fmt::format("{} name '{}' is not an identifier (letters, digits, _)", what, name));
+  // Shaders name a slot p_NAME or l_NAME, and GLSL reserves every identifier containing "__".
+  if (name.front() == '_' || name.find("__") != std::string_view::npos)
+    throw InvalidArgument(
+        fmt::format("{} name '{}' may not start with _ or contain __ (reserved in GLSL)", what, name));
 }
 
 Program::Program(std::vector<std::string> inputs, std::vector<std::string> params)

@@ -266,6 +266,19 @@ std::string check_json(const std::vector<CheckCase>& cases) {
   return list.dump(2) + "\n";
 }
 
+fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, std::optional<int> digits,
+                             Spelling spelling) {
+  if (spec.params.contains("n"))
+    fail("params", fmt::format("give n with {}, not {}", spelled("n", spelling), spelled("params", spelling)));
+  fit::Data data{{"n"}, {{n.begin(), n.end()}}, {}};
+  for (const double x : n) {
+    const Model m = lobe_model_at("model", "fit", spec.id, spec.params, x, spec.form, spelling);
+    const double k = normalize::coefficient(m.lobe(), m.form());
+    data.target.push_back(digits ? std::stod(io::format_number(k, *digits)) : k);
+  }
+  return data;
+}
+
 std::string glsl_function(const Model& model, std::string_view dialect_name, Spelling) {
   const glsl::Dialect dialect = for_field("dialect", [&] { return glsl::parse_dialect(dialect_name); });
   std::string params;

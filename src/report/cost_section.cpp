@@ -90,7 +90,7 @@ std::vector<Cost> measure_costs(const Context& context) {
   std::vector<Cost> costs;
   for (const auto& info : models()) {
     Cost c{make_model(info.id), INFINITY, std::nullopt};
-    if (c.model.is_lobe())
+    if (c.model.is_lobe() && info.find_param("n"))
       c.max_abs_error = analysis::approximation_error(c.model.lobe(), lobes::Power<>{c.model.param("n")}).max_abs;
     costs.push_back(std::move(c));
   }

@@ -14,7 +14,6 @@
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
-#include "specula/normalize/normalize.h"
 #include "specula/serve/server.h"
 
 namespace specula::serve {
@@ -109,18 +108,11 @@ void read_data(const Fields& f, Job& job, const Limits& limits) {
 /// coefficient k(n) (as `specula normalize` prints it) to fit as a function of n.
 void read_model(const Fields& f, Job& job, const Limits& limits) {
   const queries::ModelSpec spec = f.model(false);
-  if (spec.params.contains("n")) fail("params", "give n with n, not params");
   const auto ns = f.values_or("n", "paper50", limits.max_n);
-  const int digits = static_cast<int>(f.integer_or("round", -1, 0, 17));  // -1: not rounded
+  const std::int64_t digits = f.integer_or("round", -1, 0, 17);  // -1: not rounded
   job.target = "coef";
-  job.data.variables = {"n"};
-  job.data.columns = {ns};
-  for (const double n : ns) {
-    const Model m = queries::lobe_model_at("model", "fit", spec.id, spec.params, n, spec.form, queries::Spelling::key);
-    double k = normalize::coefficient(m.lobe(), m.form());
-    if (digits >= 0) k = std::stod(io::format_number(k, digits));
-    job.data.target.push_back(k);
-  }
+  job.data = queries::normalization_data(spec, ns, digits < 0 ? std::nullopt : std::optional<int>(int(digits)),
+                                         queries::Spelling::key);
   job.source = fmt::format("{} normalization", spec.id);
 }
 

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "cli_fixture.h"
+#include "text_support.h"
 
 namespace specula::testing {
 namespace {
@@ -44,6 +45,54 @@ TEST_F(Cli, AnInlineLobeWorksWhereAModelIdDoes) {
   EXPECT_NEAR(k, 1 / (2 * 3.14159265358979323846 * (1 / 12.5 - 1 / 187.5)), 1e-12 * k);
   const Result brdf = ok({"check", "--model", "brdf: rho/pi", "-p", "rho=0.5"});
   EXPECT_THAT(brdf.out, HasSubstr("energy conservation         holds"));
+}
+
+TEST_F(Cli, ErrorTakesAUsersLobeAsModelAndAsReference) {
+  const auto error = [&](const std::string& model, const std::string& reference) {
+    return ok({"--models", kCopies, "error", "--model", model, "--reference", reference, "--n", "10,1000"}).out;
+  };
+  const auto columns = [](const std::string& csv) {
+    std::vector<double> values;
+    for (const auto& line : lines_of(csv))
+      if (line.front() != 'n')
+        for (const auto& cell : cells_of(line)) values.push_back(std::stod(cell));
+    return values;
+  };
+  const auto builtin = columns(error("log", "phong"));
+  ASSERT_EQ(builtin.size(), 10u);
+  for (const auto& [model, reference] : {std::pair{"my-log", "phong"}, {"log", "my-phong"}, {"my-log", "my-phong"}}) {
+    const auto user = columns(error(model, reference));
+    ASSERT_EQ(user.size(), builtin.size());
+    for (std::size_t i = 0; i < user.size(); ++i)  // columns n, max_abs, argmax_abs_deg, max_rel_…
+      EXPECT_NEAR(user[i], builtin[i], i % 5 == 2 ? 1e-4 : 1e-9) << model << " " << reference << " " << i;
+  }
+  EXPECT_GT(std::abs(columns(error("my-schlick", "phong"))[1] - builtin[1]), 1e-3);  // control: another lobe
+}
+
+TEST_F(Cli, FitTakesAUsersLobeAndFitsItsNormalization) {
+  // An exhaustive search (every formula up to size 3, no genetic generations) is deterministic:
+  // the copy's k(n) gives the built-in's front, error for error.
+  const auto front = [&](const std::string& model) {
+    const std::string json = ok({"--models", kCopies, "fit", "--model", model, "--n", "1:1000@30:log",
+                                 "--max-size", "3", "--enumerate-size", "3", "--generations", "0", "--format",
+                                 "json", "--threads", "1", "--quiet"}).out;
+    return json;
+  };
+  const auto train_errors = [](const std::string& json) {
+    std::vector<double> errors;
+    for (auto at = json.find("\"train_error\": "); at != std::string::npos; at = json.find("\"train_error\": ", at + 1))
+      errors.push_back(std::stod(json.substr(at + 15)));
+    return errors;
+  };
+  const std::string mine = front("my-log"), builtin = front("log");
+  EXPECT_THAT(mine, HasSubstr("\"data\": \"my-log normalization\""));
+  const auto a = train_errors(mine), b = train_errors(builtin), other = train_errors(front("my-schlick"));
+  ASSERT_FALSE(a.empty());
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-9 * (1 + b[i])) << i;
+  EXPECT_GT(std::abs(other.back() - b.back()), 1e-6 * (1 + b.back()));  // control: another lobe
+  EXPECT_THAT(bad({"fit", "--model", "log", "--data", "x.csv", "--target", "coef"}).err, HasSubstr("one of them"));
+  EXPECT_THAT(bad({"fit", "--model", "ggx"}).err, HasSubstr("full BRDF"));
 }
 
 TEST_F(Cli, CheckReportsAFormulaThatBreaksTheRulesAsAFailureNotAnInputError) {

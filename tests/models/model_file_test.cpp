@@ -205,6 +205,9 @@ TEST(ModelFileErrors, EveryStructuralMistakeIsOneLine) {
       {with("lobe = \"c^n\"", "lobe = \"" + [] { std::string s = "c"; for (int i = 0; i < 80; ++i) s = "c^(" + s + ")"; return s; }() + "\""),
        "m.toml:6: lobe: formula nests too deep"},
       {with("[model.params.n]", "[model.params.pi]"), "m.toml:8: parameter name 'pi' is reserved"},
+      {with("[model.params.n]", "[model.params.a__b]"), "m.toml:8: parameter name 'a__b' may not start with _ or contain __"},
+      {with("[model.params.n]", "[model.params._b]"), "m.toml:8: parameter name '_b' may not start with _"},
+      {with("[model.params.n]", "[model.params.a_b]"), "m.toml:6: column 11: lobe: unknown variable 'n'"},  // control
       {with("lobe = \"c^n\"", "brdf = \"nl\""), "m.toml:6: key 'brdf' belongs to kind = \"brdf\""},
   };
   for (const auto& [text, expected] : cases) {

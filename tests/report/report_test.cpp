@@ -11,6 +11,7 @@
 #include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 #include "specula/models/model.h"
+#include "specula/models/model_file.h"
 #include "specula/normalize/normalize.h"
 #include "specula/report/report.h"
 #include "text_support.h"
@@ -63,10 +64,12 @@ class BeyondThePaperTest : public ::testing::Test {
     dir_ = new std::filesystem::path(std::filesystem::temp_directory_path() /
                                      ("specula-report-beyond-" +
                                       std::to_string(::testing::UnitTest::GetInstance()->random_seed())));
+    register_model_file(SPECULA_SOURCE_DIR "/tests/report/user_lobes.toml");
     write_report({*dir_, true});
     html_ = new std::string(read_file(*dir_ / "index.html"));
   }
   static void TearDownTestSuite() {
+    clear_registered_models();
     std::filesystem::remove_all(*dir_);
     delete dir_;
     delete html_;
@@ -182,6 +185,31 @@ TEST_F(BeyondThePaperTest, AlbedosMatchClosedForms) {
   EXPECT_EQ(row(energy, {"phong-normalized", "nh", "rv"})[3], fmt::format("{:.6g}", phong_in_nh));
   // Lambert's ρ is its albedo at every angle.
   EXPECT_EQ(row(energy, {"lambert", "—", "—"})[3], "1");
+}
+
+// The user's lobes of tests/report/user_lobes.toml, against the mpmath values of
+// tests/reference/user_lobes.csv (quartic: k_rv(10) = 2.1315394164093125326, k_nh(10) =
+// 0.70036657473796054352; max |F − c¹| at n = 1 = 0.31640625).
+TEST_F(BeyondThePaperTest, UserLobesAppearInTheEnergyTable) {
+  const std::string energy = section("energy");
+  const auto own = row(energy, {"quartic", "rv", "rv"});
+  ASSERT_EQ(own.size(), 9u);
+  EXPECT_EQ(own[3], "1");  // k by quadrature: ρ(0°) = 1 to the digits shown
+  EXPECT_EQ(own[8].rfind("conserves", 0), 0u) << own[8];
+  EXPECT_EQ(row(energy, {"quartic", "nh", "rv"})[3], fmt::format("{:.6g}", 2.1315394164093125326 / 0.70036657473796054352));
+  EXPECT_NE(row(energy, {"lobe-c8", "rv", "—"})[3], "1");  // control: a bare lobe is not normalized
+}
+
+TEST_F(BeyondThePaperTest, UserLobesAreComparedWithCosN) {
+  const std::string lobes = section("lobes");
+  EXPECT_NE(lobes.find("<figure id=\"user-lobe-errors\">"), std::string::npos);
+  EXPECT_FALSE(row(lobes, {"quartic"}).empty());
+  EXPECT_TRUE(row(lobes, {"lobe-c8"}).empty());  // no n to sweep
+  const auto rows = csv("user-lobe-errors.csv");
+  ASSERT_EQ(rows[0][2], "max_abs");
+  ASSERT_EQ(rows[1][0], "quartic");
+  ASSERT_EQ(std::stod(rows[1][1]), 1.0);
+  EXPECT_NEAR(std::stod(rows[1][2]), 0.31640625, 1e-9);
 }
 
 TEST_F(BeyondThePaperTest, ClaimsTableReadsTheEnergyFindings) {

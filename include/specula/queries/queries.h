@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "specula/analysis/check.h"
+#include "specula/fit/fit.h"
 #include "specula/io/table.h"
 #include "specula/models/model.h"
 
@@ -127,6 +128,14 @@ std::vector<CheckCase> check_cases(const CheckQuery& query, Spelling spelling);
 
 /// The cases as a JSON array of objects (model metadata, albedos, verdicts).
 std::string check_json(const std::vector<CheckCase>& cases);
+
+// ---- fit ---------------------------------------------------------------------------------------
+
+/// A lobe model's coefficient k(n) at each n, as `normalize` prints it (rounded to `digits`
+/// decimals when given), as data for fit::search: variable n, target coef. InvalidField "params"
+/// when n is among the parameters, else as lobe_model_at (field "model").
+fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, std::optional<int> digits,
+                             Spelling spelling);
 
 // ---- glsl and models ---------------------------------------------------------------------------
 
