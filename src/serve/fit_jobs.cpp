@@ -116,12 +116,12 @@ void read_model(const Fields& f, Job& job, const Limits& limits) {
   job.data.variables = {"n"};
   job.data.columns = {ns};
   for (const double n : ns) {
-    const Model m = queries::lobe_model_at("model", "fit", spec.id, spec.params, n, spec.form, queries::Spelling::key);
+    const Model m = queries::lobe_model_at("model", "fit", spec.model, spec.params, n, spec.form, queries::Spelling::key);
     double k = normalize::coefficient(m.lobe(), m.form());
     if (digits >= 0) k = std::stod(io::format_number(k, digits));
     job.data.target.push_back(k);
   }
-  job.source = fmt::format("{} normalization", spec.id);
+  job.source = fmt::format("{} normalization", spec.model.name());
 }
 
 template <class Parse>
