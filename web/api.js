@@ -1,10 +1,11 @@
 // The server's JSON API: GET without a body, POST with one; an error answer throws
-// an Error whose message names the field ("n: …").
+// an Error whose message names the field ("n: …"), with the field and the reason apart too.
 export async function api(path, body) {
   const init = body === undefined ? {} : {method: 'POST', headers: {'Content-Type': 'application/json'}, body: JSON.stringify(body)};
   const response = await fetch(path, init);
   const answer = await response.json();
-  if (!response.ok) throw new Error(answer.field ? `${answer.field}: ${answer.error}` : answer.error);
+  if (!response.ok)
+    throw Object.assign(new Error(answer.field ? `${answer.field}: ${answer.error}` : answer.error), {field: answer.field, reason: answer.error});
   return answer;
 }
 

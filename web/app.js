@@ -1,17 +1,25 @@
 // specula lab: model cards with parameter sliders, the spheres (WebGL2, the server's shaders),
-// a difference view, plots and the fit panel. Every number comes from the server's API.
+// a difference view, plots, the model editor and the fit panel. Every number comes from the
+// server's API. A card holds a catalogue id or a definition of the editor's (sent as it is).
 import {api, column} from './api.js';
 import {readState, writeState} from './state.js';
 import {SphereView, drawDifference} from './spheres.js';
 import {linePlot, polarPlot, palette} from './plots.js';
 import {setupFit} from './fit.js';
+import {setupEditor} from './editor.js';
 
 const $ = (id) => document.getElementById(id);
-let catalogue = [], state = readState(), pending = null, generation = 0;
+let catalogue = [], state = readState(), pending = null, generation = 0, edit = null;
 const views = [];
 
 const info = (id) => catalogue.find((m) => m.id === id);
-const isLobe = (id) => info(id)?.kind === 'lobe';
+// A card's model as the catalogue lists one: its own definition's, or the catalogue's entry.
+const infoOf = (m) => m.definition
+  ? {id: m.id, kind: m.definition.kind, params: Object.entries(m.definition.params).map(([name, p]) => ({name, ...p}))}
+  : info(m.id);
+const ref = (m) => m.definition ?? m.id;  // the model as a request names it
+const isLobe = (m) => infoOf(m)?.kind === 'lobe';
+const hasN = (m) => infoOf(m).params.some((p) => p.name === 'n');
 const wide = (p) => p.max / Math.max(p.min, 1e-3) > 1000;  // log slider for n-like parameters
 
 // Slider position in [0, 1000] ↔ parameter value.
@@ -31,12 +39,19 @@ function modelCard(model, index) {
   const select = document.createElement('select');
   select.id = `model-${index}`;
   select.setAttribute('aria-label', `Model ${index + 1}`);
-  select.replaceChildren(...catalogue.map((m) => new Option(m.id, m.id, false, m.id === model.id)));
+  const own = model.definition ? [new Option(`${model.id} (yours)`, model.id, false, true)] : [];
+  select.replaceChildren(...own, ...catalogue.map((m) => new Option(m.id, m.id, false, !model.definition && m.id === model.id)));
   select.addEventListener('change', () => {
     state.models[index] = {id: select.value, params: {}};
     rebuild();
   });
   header.append(Object.assign(document.createElement('span'), {textContent: '●', style: `color:${palette[index]}`}), select);
+  if (model.definition) {
+    const button = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Edit'});
+    button.setAttribute('aria-label', `Edit model ${index + 1}`);
+    button.addEventListener('click', () => edit(model.definition));
+    header.append(button);
+  }
   if (state.models.length > 1) {
     const remove = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Remove'});
     remove.setAttribute('aria-label', `Remove model ${index + 1}`);
@@ -44,7 +59,7 @@ function modelCard(model, index) {
     header.append(remove);
   }
   card.append(header);
-  for (const p of info(model.id).params) {
+  for (const p of infoOf(model).params) {
     const value = model.params[p.name] ?? p.default;
     const id = `param-${index}-${p.name}`;
     const label = Object.assign(document.createElement('label'), {htmlFor: id});
@@ -87,7 +102,7 @@ const lightDirection = () => {
   const t = (state.theta * Math.PI) / 180, p = (state.phi * Math.PI) / 180;
   return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
 };
-const shaderRequest = (m) => ({model: m.id, params: m.params, shader: true, light: lightDirection(), size: [state.size, state.size]});
+const shaderRequest = (m) => ({model: ref(m), params: m.params, shader: true, light: lightDirection(), size: [state.size, state.size]});
 const lobeParams = (m) => Object.fromEntries(Object.entries(m.params).filter(([k]) => k !== 'n'));
 
 async function drawSpheres(ticket) {
@@ -102,41 +117,58 @@ async function drawSpheres(ticket) {
 async function drawPlots(ticket) {
   const degrees = Array.from({length: 90}, (_, i) => i);
   const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id}));
-  const lobe = await Promise.all(models.map(async (m) => isLobe(m.id)
-    ? {...m, xs: degrees, ys: column(await api('/api/eval', {model: m.id, params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
-    : {...m, xs: degrees, ys: column(await api('/api/eval', {model: m.id, params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
+  const lobe = await Promise.all(models.map(async (m) => isLobe(m)
+    ? {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
+    : {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
   const polar = await Promise.all(models.map(async (m) => {
-    const at = (phi) => api('/api/eval', {model: m.id, params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
+    const at = (phi) => api('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
     const [away, toward] = await Promise.all([at(180), at(0)]);
     return {...m, degrees: [...degrees.map((d) => d).reverse(), ...degrees.map((d) => -d)],
             values: [...column(away, 'value').reverse(), ...column(toward, 'value')]};
   }));
   const thetas = '0:85:5,89';
   const albedo = await Promise.all(models.map(async (m) => {
-    const t = await api('/api/albedo', {model: m.id, params: m.params, theta: thetas});
+    const t = await api('/api/albedo', {model: ref(m), params: m.params, theta: thetas});
     return {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
   }));
-  const error = isLobe(state.reference) ? await Promise.all(models.filter((m) => isLobe(m.id)).map(async (m) => {
-    const t = await api('/api/error', {model: m.id, params: lobeParams(m), reference: state.reference, n: '1:1000@25:log'});
+  const error = isLobe({id: state.reference}) ? await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
+    const t = await api('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: '1:1000@25:log'});
     return {...m, xs: column(t, 'n'), ys: column(t, 'max_abs')};
   })) : [];
-  const coefficients = await Promise.all(models.filter((m) => isLobe(m.id)).map(async (m) => {
-    const used = await api('/api/eval', {model: m.id, params: m.params, cos: [1]});
-    const logLobe = m.id.startsWith('log');  // the paper fitted k(n) for the log lobe only
-    const exact = await api('/api/normalize', {model: m.id, params: lobeParams(m), n: [m.params.n ?? info(m.id).params[0].default],
+  const coefficients = await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
+    const used = await api('/api/eval', {model: ref(m), params: m.params, cos: [1]});
+    const logLobe = !m.definition && m.id.startsWith('log');  // the paper fitted k(n) for the log lobe only
+    const exact = await api('/api/normalize', {model: ref(m), params: lobeParams(m), n: [m.params.n ?? infoOf(m).params[0].default],
                                                ...(logLobe ? {compare: 'log-paper'} : {})});
     return [m.id, Number(used.coef), column(exact, 'coef')[0], logLobe ? column(exact, 'coef_compare')[0] : '-'];
   }));
+  // A coarse check (fewer pairs, a 5° grid) keeps each update quick.
+  const checks = await Promise.all(models.map(async (m) => [m.id, (await api('/api/check', {model: ref(m), params: m.params, pairs: 1000, step: 5}))[0]]));
   if (ticket !== generation) return;
   linePlot($('plot-lobe'), lobe, {xLabel: 'angle (degrees)', yLabel: 'k·F or f'});
   polarPlot($('plot-polar'), polar, {lightDeg: state.theta});
   linePlot($('plot-albedo'), albedo, {xLabel: 'θi (degrees)', yLabel: 'albedo ρ'});
   linePlot($('plot-error'), error, {xLabel: 'n', yLabel: 'max |F − Fref|', logX: true});
-  document.querySelector('#coefficients tbody').replaceChildren(...coefficients.map((cells) => {
-    const row = document.createElement('tr');
-    for (const c of cells) row.append(Object.assign(document.createElement('td'), {textContent: typeof c === 'number' ? c.toPrecision(8) : c}));
-    return row;
-  }));
+  document.querySelector('#checks tbody').replaceChildren(...checks.map(([id, c]) => tableRow(
+    [id, c.albedo_normal, c.max_albedo, c.conserves_energy ? 'yes' : 'no', c.reciprocal ? 'yes' : 'no', c.non_negative ? 'yes' : 'no'])));
+  document.querySelector('#coefficients tbody').replaceChildren(...coefficients.map(tableRow));
+}
+
+function tableRow(cells) {
+  const row = document.createElement('tr');
+  for (const c of cells) row.append(Object.assign(document.createElement('td'), {textContent: typeof c === 'number' ? c.toPrecision(8) : c}));
+  return row;
+}
+
+/// The editor's definition as a card: the card of the same id is updated, else one is added
+/// (the last replaced when there are four); its parameters start at their defaults.
+function applyDefinition(definition) {
+  const card = {id: definition.id, definition, params: {}};
+  const same = state.models.findIndex((m) => m.id === definition.id);
+  if (same >= 0) state.models[same] = card;
+  else if (state.models.length < 4) state.models.push(card);
+  else state.models[3] = card;
+  rebuild();
 }
 
 async function update() {
@@ -159,7 +191,7 @@ async function update() {
 
 async function main() {
   catalogue = await api('/api/models');
-  state.models = state.models.filter((m) => info(m.id)).slice(0, 4);
+  state.models = state.models.filter((m) => m.definition || info(m.id)).slice(0, 4);
   if (!state.models.length) state.models = [{id: 'log-normalized', params: {n: 50}}];
   $('reference').replaceChildren(...catalogue.map((m) => new Option(m.id, m.id, false, m.id === state.reference)));
   $('reference').addEventListener('change', () => { state.reference = $('reference').value; schedule(); });
@@ -172,6 +204,7 @@ async function main() {
     rebuild();
   });
   setupFit(catalogue.filter((m) => m.kind === 'lobe'));
+  edit = setupEditor(applyDefinition);
   rebuild();
 }
 

@@ -123,7 +123,7 @@ std::string coefficient_expression(ShaderSource& src, const Model& model) {
   ParamValues values;
   for (std::size_t i = 0; i < model.params().size(); ++i)
     values[std::string(model.info().params[i].name)] = model.params()[i];
-  const double own_k = make_model(model.id(), values, model.form()).coef();
+  const double own_k = make_model(model.shared_info(), values, model.form()).coef();
   if (model.coef() != own_k) return lit(model.coef());
   if (std::holds_alternative<lobes::Formula>(model.lobe())) {
     if (model.info().coef_program) return coefficient_formula(*model.info().coef_program);

@@ -241,8 +241,9 @@ ModelInfo read_model(const Reader& r, const toml::table& model) {
   if (kind == "lobe") {
     reject("brdf", "belongs to kind = \"brdf\" (a lobe has lobe = or lobe_u =)");
     info.kind = ModelKind::lobe;
+    const std::string form = r.text(model, "form", true);  // outside the try: a missing key is its own error
     try {
-      info.form = parse_form(r.text(model, "form", true));
+      info.form = parse_form(form);
     } catch (const InvalidArgument& e) {
       r.fail(model.get("form")->source(), e.what());
     }

@@ -59,9 +59,9 @@ void require_no_n(const ParamValues& params, Spelling spelling) {
 }
 
 /// The default n of a lobe model (InvalidField "model" for a full BRDF).
-double default_n(const std::string& id) {
-  const Model m = for_field("model", [&] { return make_model(id); });
-  if (!m.is_lobe()) fail("model", fmt::format("normalize works on lobe models; '{}' is a full BRDF", id));
+double default_n(const ModelRef& ref) {
+  const Model m = for_field("model", [&] { return ref.make(); });
+  if (!m.is_lobe()) fail("model", fmt::format("normalize works on lobe models; '{}' is a full BRDF", ref.name()));
   return m.param("n");
 }
 
@@ -85,10 +85,14 @@ std::string spelled(std::string_view key, Spelling spelling) {
   return option;
 }
 
+Model ModelRef::make(const ParamValues& params, std::optional<Form> form) const {
+  return definition_ ? make_model(definition_, params, form) : make_model(id_, params, form);
+}
+
 Model make(const ModelSpec& spec, Spelling) {
-  for_field("model", [&] { return make_model(spec.id); });
-  Model m = for_field("params", [&] { return make_model(spec.id, spec.params); });
-  if (spec.form) m = for_field("form", [&] { return make_model(spec.id, spec.params, spec.form); });
+  for_field("model", [&] { return spec.model.make(); });
+  Model m = for_field("params", [&] { return spec.model.make(spec.params); });
+  if (spec.form) m = for_field("form", [&] { return spec.model.make(spec.params, spec.form); });
   if (spec.coef) m = for_field("coef", [&] { return m.with_coef(*spec.coef); });
   return m;
 }
@@ -97,13 +101,13 @@ Form form_named(std::string_view text, Spelling) {
   return for_field("form", [&] { return parse_form(text); });
 }
 
-Model lobe_model_at(std::string_view field, std::string_view command, std::string_view id,
+Model lobe_model_at(std::string_view field, std::string_view command, const ModelRef& ref,
                     ParamValues params, double n, std::optional<Form> form, Spelling spelling) {
-  if (!for_field(field, [&] { return make_model(id); }).is_lobe())
-    fail(field, fmt::format("{} works on lobe models; '{}' is a full BRDF", command, id));
-  make(ModelSpec{std::string(id), params, form, std::nullopt}, spelling);
+  if (!for_field(field, [&] { return ref.make(); }).is_lobe())
+    fail(field, fmt::format("{} works on lobe models; '{}' is a full BRDF", command, ref.name()));
+  make(ModelSpec{ref, params, form, std::nullopt}, spelling);
   params["n"] = n;
-  return for_field("n", [&] { return make_model(id, params, form); });
+  return for_field("n", [&] { return ref.make(params, form); });
 }
 
 std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
@@ -161,7 +165,7 @@ io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
   const normalize::Method method = method_of(q.method);
   const std::vector<double> ns = q.n.empty() ? std::vector<double>{default_n(q.model)} : q.n;
 
-  io::Table table{{"n", "coef"}, {}, {{"model", q.model}, {"method", q.method}, {"condition", q.condition}}};
+  io::Table table{{"n", "coef"}, {}, {{"model", std::string(q.model.name())}, {"method", q.method}, {"condition", q.condition}}};
   if (both) table.columns.insert(table.columns.end(), {"coef_quadrature", "rel_diff"});
   if (!q.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
   for (const double n : ns) {
@@ -182,7 +186,7 @@ io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
     }
     table.rows.push_back(std::move(row));
   }
-  if (!q.compare.empty()) table.meta.emplace_back("compare", q.compare);
+  if (!q.compare.empty()) table.meta.emplace_back("compare", q.compare.name());
   return table;
 }
 
@@ -209,13 +213,13 @@ io::Table error_table(const ErrorQuery& q, Spelling spelling) {
   require_no_n(q.params, spelling);
   if (!(q.zone > 0 && q.zone < 1))
     fail("zone", fmt::format("{} {} is outside (0, 1)", spelled("zone", spelling), q.zone));
-  auto lobe_of = [&](std::string_view field, std::string_view id, const ParamValues& params, double n) {
-    return lobe_model_at(field, "error", id, params, n, std::nullopt, spelling).lobe();
+  auto lobe_of = [&](std::string_view field, const ModelRef& ref, const ParamValues& params, double n) {
+    return lobe_model_at(field, "error", ref, params, n, std::nullopt, spelling).lobe();
   };
   for (const double n : q.n) lobe_of("model", q.model, q.params, n), lobe_of("reference", q.reference, {}, n);
   io::Table table{{"n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"},
                   {},
-                  {{"model", q.model}, {"reference", q.reference}, {"zone", io::format_number(q.zone)}}};
+                  {{"model", std::string(q.model.name())}, {"reference", std::string(q.reference.name())}, {"zone", io::format_number(q.zone)}}};
   const auto rows = analysis::parallel_map(std::span<const double>(q.n), [&](double n) {
     const auto e = analysis::approximation_error(lobe_of("model", q.model, q.params, n),
                                                  lobe_of("reference", q.reference, {}, n), q.zone);
@@ -233,7 +237,7 @@ std::vector<CheckCase> check_cases(const CheckQuery& q, Spelling spelling) {
   }
   const Model defaults = make(q.model, spelling);
   if (!defaults.info().find_param(q.sweep))
-    fail("sweep", fmt::format("model '{}' has no parameter '{}' to sweep", q.model.id, q.sweep));
+    fail("sweep", fmt::format("model '{}' has no parameter '{}' to sweep", q.model.model.name(), q.sweep));
   if (q.model.params.contains(q.sweep))
     fail("sweep", fmt::format("{} is swept; do not also give it with {}", q.sweep, spelled("params", spelling)));
   std::vector<CheckCase> cases;
@@ -272,7 +276,7 @@ fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, s
     fail("params", fmt::format("give n with {}, not {}", spelled("n", spelling), spelled("params", spelling)));
   fit::Data data{{"n"}, {{n.begin(), n.end()}}, {}};
   for (const double x : n) {
-    const Model m = lobe_model_at("model", "fit", spec.id, spec.params, x, spec.form, spelling);
+    const Model m = lobe_model_at("model", "fit", spec.model, spec.params, x, spec.form, spelling);
     const double k = normalize::coefficient(m.lobe(), m.form());
     data.target.push_back(digits ? std::stod(io::format_number(k, *digits)) : k);
   }

@@ -48,12 +48,12 @@ std::string eval_endpoint(std::string_view body, const Limits& limits) {
 std::string normalize_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "form", "n", "method", "compare", "condition", "step"});
   queries::NormalizeQuery q;
-  q.model = f.text("model");
+  q.model = f.model_ref("model");
   q.params = f.params();
   if (f.has("form")) q.form = queries::form_named(f.text("form"), kKey);
   if (f.has("n")) q.n = f.values("n", n_cap(f, limits));
   q.method = f.text_or("method", q.method);
-  q.compare = f.text_or("compare", "");
+  if (f.has("compare")) q.compare = f.model_ref("compare");
   q.condition = f.text_or("condition", q.condition);
   q.step = f.number_or("step", q.step);
   return io::to_json(queries::normalize_table(q, kKey));
@@ -93,9 +93,9 @@ std::string check_endpoint(std::string_view body, const Limits& limits) {
 std::string error_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "reference", "n", "zone"});
   queries::ErrorQuery q;
-  q.model = f.text("model");
+  q.model = f.model_ref("model");
   q.params = f.params();
-  q.reference = f.text_or("reference", q.reference);
+  if (f.has("reference")) q.reference = f.model_ref("reference");
   q.n = f.values_or("n", "1:1000@50:log", limits.max_n);
   q.zone = f.number_or("zone", q.zone);
   return io::to_json(queries::error_table(q, kKey));

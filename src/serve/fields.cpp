@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "definition.h"
 #include "specula/exceptions.h"
 #include "specula/io/values.h"
 
@@ -169,8 +170,16 @@ ParamValues Fields::params() const {
   return params;
 }
 
+queries::ModelRef Fields::model_ref(std::string_view key) const {
+  const Json& value = raw(key);
+  if (value.is_string()) return queries::ModelRef(value.get<std::string>());
+  if (value.is_object()) return queries::ModelRef(definition_model(value, name(key)));
+  fail(key, fmt::format("{} must be a model id, an inline definition such as \"lobe: c^n\" or a definition object, got {}",
+                        name(key), type_name(value)));
+}
+
 queries::ModelSpec Fields::model(bool with_coef) const {
-  queries::ModelSpec spec{text("model"), params(), std::nullopt, std::nullopt};
+  queries::ModelSpec spec{model_ref("model"), params(), std::nullopt, std::nullopt};
   if (has("form")) spec.form = queries::form_named(text("form"), queries::Spelling::key);
   if (with_coef && has("coef")) spec.coef = number("coef");
   return spec;

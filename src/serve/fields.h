@@ -39,7 +39,10 @@ class Fields {
 
   /// {"name": number, …} as ParamValues ("params", optional).
   ParamValues params() const;
-  /// model, params, form, and coef when `with_coef`.
+  /// The model `key` names: an id or inline definition (a string), or a definition object
+  /// (serve/definition.h), whose errors name the key at fault ("model.lobe").
+  queries::ModelRef model_ref(std::string_view key) const;
+  /// model (model_ref), params, form, and coef when `with_coef`.
   queries::ModelSpec model(bool with_coef = true) const;
 
   /// The object under `key` (an object), as Fields with its own known keys.

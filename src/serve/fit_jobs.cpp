@@ -113,7 +113,7 @@ void read_model(const Fields& f, Job& job, const Limits& limits) {
   job.target = "coef";
   job.data = queries::normalization_data(spec, ns, digits < 0 ? std::nullopt : std::optional<int>(int(digits)),
                                          queries::Spelling::key);
-  job.source = fmt::format("{} normalization", spec.id);
+  job.source = fmt::format("{} normalization", spec.model.name());
 }
 
 template <class Parse>

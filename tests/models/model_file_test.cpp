@@ -200,6 +200,7 @@ TEST(ModelFileErrors, EveryStructuralMistakeIsOneLine) {
       {with("max = 10", "max = 10\nmeening = 1"), "m.toml:12: unknown key 'meening' in parameter 'n'"},
       {with("kind = \"lobe\"", "kind = \"lobes\""), "m.toml:4: kind 'lobes' is neither"},
       {with("form = \"rv\"", "form = \"rr\""), "m.toml:5: unknown form 'rr'"},
+      {with("form = \"rv\"\n", ""), "m.toml:1: missing key 'form'"},
       {with("lobe = \"c^n\"", "lobe = \"" + std::string(5000, 'c') + "\""), "m.toml:6: key 'lobe' is too long"},
       {with("lobe = \"c^n\"", "lobe = \"" + std::string(100, '(') + "c" + std::string(100, ')') + "\""), "no error"},
       {with("lobe = \"c^n\"", "lobe = \"" + [] { std::string s = "c"; for (int i = 0; i < 80; ++i) s = "c^(" + s + ")"; return s; }() + "\""),

@@ -25,39 +25,17 @@ using json = nlohmann::json;
 using specula::testing::Answer;
 using specula::testing::get;
 using specula::testing::post;
-using specula::testing::TestServer;
 using ::testing::HasSubstr;
 
-// One server for the suite: every test talks to it over HTTP.
-class ServeApi : public ::testing::Test {
+class ServeApi : public specula::testing::ServerSuite {
  protected:
-  static void SetUpTestSuite() { server_ = new TestServer(); }
-  static void TearDownTestSuite() {
-    delete server_;
-    server_ = nullptr;
-  }
-  static int port() { return server_->port(); }
-
-  /// POSTs `body` to `path` and returns the JSON of a 200 answer.
-  static json ok(const std::string& path, const json& body) {
-    const Answer a = specula::testing::post_json(port(), path, body);
-    EXPECT_EQ(a.status, 200) << path << " " << body.dump() << " → " << a.body;
-    EXPECT_EQ(a.content_type, "application/json");
-    return a.status == 200 ? a.json() : json();
-  }
-
   /// The column `name` of a table answer.
   static std::vector<double> column(const json& table, const std::string& name) {
     std::vector<double> values;
     for (const auto& row : table["rows"]) values.push_back(row[name].is_null() ? NAN : row[name].get<double>());
     return values;
   }
-
- private:
-  static TestServer* server_;
 };
-
-TestServer* ServeApi::server_ = nullptr;
 
 TEST_F(ServeApi, ModelsListsEveryModelWithItsParameters) {
   const Answer a = get(port(), "/api/models");

@@ -2,7 +2,8 @@
 // chromedriver. It loads from the server's embedded assets, renders each model's sphere with the
 // shader the server emits — pixels within a tolerance of the CPU renderer's image of the same
 // scene — re-renders when a slider moves (by keyboard) or a model is picked, keeps its state in
-// the URL, draws its plots, runs a fit, and fits a phone-width screen.
+// the URL, draws its plots, runs a fit, adds a model typed into its editor (or shows the server's
+// error next to the formula), and fits a phone-width screen.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 
 #include "serve_support.h"
 #include "specula/brdf/directions.h"
+#include "specula/models/model_file.h"
 #include "specula/render/image.h"
 #include "specula/render/render.h"
 #include "specula/render/scene.h"
@@ -157,6 +159,51 @@ TEST_F(Page, TheFitPanelShowsTheFrontWithCopyableCode) {
               HasSubstr("chosen"));
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#fit-front tbody button').length;"),
             2 * browser_->run("return document.querySelectorAll('#fit-front tbody tr').length;").get<int>());
+}
+
+/// The editor's default definition as a model file, for the CPU renderer's image of it.
+Model editor_default_model() {
+  const auto infos = parse_model_file(R"([[model]]
+id = "my-lobe"
+name = "the editor's default"
+kind = "lobe"
+form = "rv"
+lobe = "max(0, 1 - n*(1-c)/4)^4"
+normalization = "quadrature"
+[model.params.n]
+default = 20
+min = 0
+min_exclusive = true
+max = 1e6
+)", "editor");
+  return make_model(std::make_shared<const ModelInfo>(infos.front()));
+}
+
+TEST_F(Page, TheEditorAddsAModelCardWithItsSphere) {
+  open(kState);
+  const int done = renders();
+  browser_->click("#editor-apply");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('sphere-2') !== null;"));
+  EXPECT_EQ(browser_->run("return document.getElementById('editor-error').textContent;"), "");
+  EXPECT_EQ(state()["models"][2]["id"], "my-lobe");
+  EXPECT_EQ(browser_->run("return document.getElementById('model-2').value;"), "my-lobe");
+  expect_matches_cpu(2, editor_default_model(), 30, 135);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-albedo polyline').length;"), 3);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#checks tbody tr').length;"), 3);
+}
+
+TEST_F(Page, TheEditorShowsTheServersErrorNextToTheFormula) {
+  open(kState);
+  browser_->run("document.getElementById('editor-formula').value = '';");
+  browser_->send_keys("#editor-formula", "c^n + x");
+  browser_->click("#editor-apply");
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('editor-error').textContent !== '';"));
+  const std::string error = browser_->run("return document.getElementById('editor-error').textContent;").get<std::string>();
+  EXPECT_THAT(error, HasSubstr("model.lobe: column 7: unknown variable 'x'"));
+  EXPECT_EQ(browser_->run("return document.getElementById('editor-formula').getAttribute('aria-invalid');"), "true");
+  EXPECT_EQ(state()["models"].size(), 2u);  // no card for a definition the server refused
+  EXPECT_EQ(browser_->run("return document.getElementById('status').textContent;"), "ready");
 }
 
 TEST_F(Page, FitsAPhoneWidthScreen) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <gtest/gtest.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -196,5 +197,27 @@ class RawConnection {
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+/// One server for a test suite: every test of the suite talks to it over HTTP.
+class ServerSuite : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new TestServer(); }
+  static void TearDownTestSuite() {
+    delete server_;
+    server_ = nullptr;
+  }
+  static int port() { return server_->port(); }
+
+  /// POSTs `body` to `path` and returns the JSON of a 200 answer.
+  static nlohmann::json ok(const std::string& path, const nlohmann::json& body) {
+    const Answer a = post_json(port(), path, body);
+    EXPECT_EQ(a.status, 200) << path << " " << body.dump() << " → " << a.body;
+    EXPECT_EQ(a.content_type, "application/json");
+    return a.status == 200 ? a.json() : nlohmann::json();
+  }
+
+ private:
+  static inline TestServer* server_ = nullptr;
+};
 
 }  // namespace specula::testing

@@ -6,6 +6,7 @@
 // InvalidField with the field's key ("theta_i", "params", "n", …) and a message that spells the
 // field the way the interface does: `--theta-i` for the CLI, `theta_i` for the server's JSON.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -29,10 +30,29 @@ enum class Spelling {
 /// `key` as `spelling` spells it.
 std::string spelled(std::string_view key, Spelling spelling);
 
-/// A model as a request names it: id, parameter values (others at their defaults), an optional
+/// A model as a request names it: an id or an inline definition ("lobe: …", "brdf: …"), or a
+/// definition of the request's own, held here only (never registered, never looked up by id).
+class ModelRef {
+ public:
+  ModelRef() = default;
+  ModelRef(std::string id) : id_(std::move(id)) {}  ///< implicit: wherever an id was, a ModelRef is
+  explicit ModelRef(std::shared_ptr<const ModelInfo> definition) : definition_(std::move(definition)) {}
+
+  bool empty() const noexcept { return !definition_ && id_.empty(); }
+  /// The id, or the definition's own id: what output metadata calls the model.
+  std::string_view name() const noexcept { return definition_ ? std::string_view(definition_->id) : id_; }
+  /// make_model of the id or of the definition.
+  Model make(const ParamValues& params = {}, std::optional<Form> form = std::nullopt) const;
+
+ private:
+  std::string id_;
+  std::shared_ptr<const ModelInfo> definition_;
+};
+
+/// A model with its values: the model, parameter values (others at their defaults), an optional
 /// form and an optional coefficient overriding the model's own k.
 struct ModelSpec {
-  std::string id;
+  ModelRef model;
   ParamValues params;
   std::optional<Form> form;
   std::optional<double> coef;
@@ -45,10 +65,10 @@ Model make(const ModelSpec& spec, Spelling spelling);
 /// "rv" or "nh" as a Form; InvalidField "form" otherwise.
 Form form_named(std::string_view text, Spelling spelling);
 
-/// The lobe model `id` at exponent n, other parameters from `params`. InvalidField `field` when
-/// `id` is unknown or a full BRDF (`command` names what needs a lobe), "params" for a bad
+/// The lobe model `ref` at exponent n, other parameters from `params`. InvalidField `field` when
+/// `ref` is unknown or a full BRDF (`command` names what needs a lobe), "params" for a bad
 /// parameter, "n" for an n out of the model's range.
-Model lobe_model_at(std::string_view field, std::string_view command, std::string_view id,
+Model lobe_model_at(std::string_view field, std::string_view command, const ModelRef& ref,
                     ParamValues params, double n, std::optional<Form> form, Spelling spelling);
 
 /// A model's metadata in JSON output: id, parameter values, and form and coef for lobe models.
@@ -70,12 +90,12 @@ io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const
 // ---- normalize ---------------------------------------------------------------------------------
 
 struct NormalizeQuery {
-  std::string model;
+  ModelRef model;
   ParamValues params;              ///< every parameter but n
   std::optional<Form> form;
   std::vector<double> n;           ///< empty: the model's default n
   std::string method = "auto";     ///< auto | exact | quadrature | both
-  std::string compare;             ///< another lobe model, or empty
+  ModelRef compare;                ///< another lobe model, or empty
   std::string condition = "normal";  ///< normal | strict
   double step = 1;                 ///< the strict condition's θ_i grid step, [0.01, 45] degrees
 };
@@ -98,9 +118,9 @@ io::Table albedo_table(const Model& m, const AlbedoQuery& query, Spelling spelli
 // ---- error -------------------------------------------------------------------------------------
 
 struct ErrorQuery {
-  std::string model;
+  ModelRef model;
   ParamValues params;  ///< every parameter but n
-  std::string reference = "phong";
+  ModelRef reference{"phong"};
   std::vector<double> n;
   double zone = 0.5;   ///< (0, 1)
 };
