@@ -34,8 +34,11 @@
 //   log              exact  Max Error: ULP = 1 + 2e-14 absolute    ULP = 8 + 6e-16 absolute (the
 //                           scalar lobe's own cancellation at the cut-off c₀ is 4e-16, lobes/log.h)
 //                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
-//   formula          both   Max Error: ULP = 0.5 (double, rounded)  ULP = 0 (bit-identical to
-//                           lobes::Formula: expr::Program::evaluate_batch, libm for log/exp/pow)
+//   formula          exact  Max Error: ULP = 0.5 + 16·2⁻⁵² rel.   ULP = 16 + 4·|ln F| + 4 ulp absolute
+//                           (float: the double lanes' result rounded once; user-written copies of
+//                           the built-in lobes, measured, simd/formula.h: per-op bounds)
+//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-6 absolute below (float
+//                           lanes, contrib math)                double arrays: as exact
 //   (rational lobes and double gauss: relative bounds hold where F ≥ the smallest normal number
 //   of the lane type; below it |F̃ − F| ≤ that number.)
 //
@@ -69,8 +72,8 @@ struct LobeSpec {
   Family family = Family::power;
   double n = 20;
   double s = 1.25;  ///< schlick-modified only
-  /// Family::formula: the lobe, evaluated in double through expr::Program::evaluate_batch (both
-  /// tiers; float lanes are rounded from it). It must outlive the spec.
+  /// Family::formula: the lobe, evaluated through the vectorized formula path (simd/formula.h).
+  /// It must outlive the spec.
   const lobes::Formula* formula = nullptr;
 };
 
