@@ -3,6 +3,7 @@
 
 #include "cli.h"
 #include "specula/cost/lobe_cost.h"
+#include "specula/models/model.h"
 
 namespace specula::cli {
 namespace {
@@ -30,12 +31,17 @@ void add_bench_command(CLI::App& app) {
       "Per lobe: ns per evaluation through the scalar lobe (libm) and the SIMD exact and fast tiers, in cache\n"
       "and streaming, on one core and on all; evaluations/s per core; accuracy against the scalar double lobe\n"
       "and against cⁿ; the compute and memory limits and each lobe's distance from the nearer. Timings are of\n"
-      "this machine now: compare the ratios. docs/simd.md explains every column. Examples:\n"
+      "this machine now: compare the ratios. docs/simd.md explains every column. User lobe models (--models\n"
+      "FILE) are measured beside the built-ins: scalar = the formula per value, exact and fast = the\n"
+      "vectorized formula path. Examples:\n"
       "  specula bench --quick\n"
+      "  specula bench --models examples/models/builtin-copies.toml\n"
       "  specula bench --format json | jq '.lobes.log.fast.evals_per_s_per_core'");
   cmd->callback([o] {
     cost::Settings settings = o->quick ? cost::Settings::quick() : cost::Settings::full();
     settings.n = o->n;
+    for (const ModelInfo& info : models())
+      if (!info.is_builtin() && info.kind == ModelKind::lobe) settings.user_lobes.push_back(info.id);
     auto progress = [verbose = o->verbose](std::string_view phase) {
       if (verbose) fmt::print(stderr, "bench: {}\n", phase);
     };

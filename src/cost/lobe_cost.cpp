@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
 #include <random>
 #include <span>
@@ -15,6 +16,7 @@
 
 #include "specula/analysis/error.h"
 #include "specula/exceptions.h"
+#include "specula/models/model.h"
 #include "specula/simd/targets.h"
 
 namespace specula::cost {
@@ -64,17 +66,50 @@ void scalar_batch(Family family, T n, std::span<const T> c, std::span<T> out) {
   }
 }
 
+/// The user lobes of one precision, by model id: each model's Formula at n rounded to T.
+using UserLobes = std::vector<std::pair<std::string, lobes::Lobe>>;
+
+template <class T>
+UserLobes user_lobes(const Settings& s) {
+  UserLobes out;
+  for (const std::string& id : s.user_lobes) {
+    const ModelInfo* info = find_model(id);
+    if (!info || info->kind != ModelKind::lobe) throw InvalidArgument(fmt::format("bench: '{}' is not a lobe model", id));
+    ParamValues values;
+    if (info->find_param("n")) values["n"] = double(T(s.n));
+    out.emplace_back(id, make_model(id, values).lobe());
+  }
+  return out;
+}
+
+/// The user lobe a row measures; nullptr for a built-in family.
+const lobes::Lobe* user_lobe(const Measurement& m, const UserLobes& users) {
+  if (m.family != Family::formula) return nullptr;
+  for (const auto& [id, lobe] : users)
+    if (id == m.lobe) return &lobe;
+  throw InvalidArgument(fmt::format("bench: no user lobe '{}'", m.lobe));
+}
+
+/// A user lobe's scalar path: the Formula per value (expr::Program::evaluate, libm), in double.
+template <class T>
+void scalar_user_batch(const lobes::Lobe& lobe, std::span<const T> c, std::span<T> out) {
+  for (std::size_t i = 0; i < c.size(); ++i) out[i] = T(lobes::eval(lobe, double(c[i])));
+}
+
+simd::Tier tier_of(Path path) { return path == Path::exact ? simd::Tier::exact : simd::Tier::fast; }
+
 /// One row's evaluation of a whole array.
 template <class T>
 struct Evaluator {
   Family family;
   Path path;
   double n;
+  const lobes::Lobe* user = nullptr;  ///< a user lobe (family == Family::formula)
 
+  simd::LobeSpec spec() const { return user ? simd::spec_of(*user) : simd::LobeSpec{family, double(T(n))}; }
   void operator()(std::span<const T> c, std::span<T> out) const {
-    if (path == Path::scalar) return scalar_batch<T>(family, T(n), c, out);
-    simd::eval_batch(simd::LobeSpec{family, double(T(n))}, path == Path::exact ? simd::Tier::exact : simd::Tier::fast,
-                     c, out);
+    if (path == Path::scalar) return user ? scalar_user_batch<T>(*user, c, out) : scalar_batch<T>(family, T(n), c, out);
+    simd::eval_batch(spec(), tier_of(path), c, out);
   }
 };
 
@@ -157,40 +192,40 @@ double stream_pass(tbb::task_arena* arena, const Evaluator<T>& eval, std::span<c
 }
 
 template <class T>
-Evaluator<T> evaluator(const Measurement& m, double n) {
-  return {m.family, m.path, n};
+Evaluator<T> evaluator(const Measurement& m, double n, const UserLobes& users) {
+  return {m.family, m.path, n, user_lobe(m, users)};
 }
 
 template <class T>
-void time_in_cache(std::vector<Measurement>& rows, const Settings& s, tbb::task_arena& arena) {
+void time_in_cache(std::vector<Measurement>& rows, const Settings& s, const UserLobes& users, tbb::task_arena& arena) {
   const std::vector<T> c = peaked_cosines<T>(std::max<std::size_t>(s.cache_bytes / sizeof(T), 1));
   std::vector<T> out(c.size());
-  for (auto& m : rows) cache_trial(evaluator<T>(m, s.n), std::span<const T>(c), std::span<T>(out), s.trial_seconds / 4);
+  for (auto& m : rows) cache_trial(evaluator<T>(m, s.n, users), std::span<const T>(c), std::span<T>(out), s.trial_seconds / 4);
   for (int trial = 0; trial < s.trials; ++trial)
     for (auto& m : rows) {
-      const double ns = cache_trial(evaluator<T>(m, s.n), std::span<const T>(c), std::span<T>(out), s.trial_seconds);
+      const double ns = cache_trial(evaluator<T>(m, s.n, users), std::span<const T>(c), std::span<T>(out), s.trial_seconds);
       keep_fastest(m.cache_ns, ns);
     }
   if (!s.threaded) return;
   for (int trial = 0; trial < s.trials; ++trial)
     for (auto& m : rows) {
       const auto passes = std::size_t(std::max(1.0, s.trial_seconds * 1e9 / (m.cache_ns * double(c.size()))));
-      const double ns = cache_threads_trial(arena, evaluator<T>(m, s.n), std::span<const T>(c), passes);
+      const double ns = cache_threads_trial(arena, evaluator<T>(m, s.n, users), std::span<const T>(c), passes);
       keep_fastest(m.cache_threads_ns, ns);
     }
 }
 
 template <class T>
-void time_streaming(std::vector<Measurement>& rows, const Settings& s, tbb::task_arena& arena) {
+void time_streaming(std::vector<Measurement>& rows, const Settings& s, const UserLobes& users, tbb::task_arena& arena) {
   const std::vector<T> c = peaked_cosines<T>(s.stream_bytes / sizeof(T));
   std::vector<T> out(c.size());
   const int passes = (s.trials + 1) / 2;
   for (int pass = 0; pass < passes; ++pass)
     for (auto& m : rows) {
-      const double one = stream_pass<T>(nullptr, evaluator<T>(m, s.n), c, out);
+      const double one = stream_pass<T>(nullptr, evaluator<T>(m, s.n, users), c, out);
       keep_fastest(m.stream_ns, one);
       if (!s.threaded) continue;
-      const double all = stream_pass<T>(&arena, evaluator<T>(m, s.n), c, out);
+      const double all = stream_pass<T>(&arena, evaluator<T>(m, s.n, users), c, out);
       keep_fastest(m.stream_threads_ns, all);
     }
 }
@@ -213,20 +248,19 @@ std::vector<T> accuracy_cosines(double n, std::size_t points) {
 }
 
 template <class T>
-void measure_accuracy(std::vector<Measurement>& rows, const Settings& s) {
+void measure_accuracy(std::vector<Measurement>& rows, const Settings& s, const UserLobes& users) {
   const std::vector<T> c = accuracy_cosines<T>(double(T(s.n)), s.accuracy_points);
   std::vector<T> out(c.size());
   for (auto& m : rows) {
-    evaluator<T>(m, s.n)(c, out);
-    const lobes::Lobe reference = scalar_lobe(m.family, double(T(s.n)));
+    evaluator<T>(m, s.n, users)(c, out);
+    const Evaluator<T> eval = evaluator<T>(m, s.n, users);
+    const lobes::Lobe reference = eval.user ? *eval.user : scalar_lobe(m.family, double(T(s.n)));
     for (std::size_t i = 0; i < c.size(); ++i) {
       const double f = lobes::eval(reference, double(c[i])), error = std::abs(double(out[i]) - f);
       m.max_abs_error = std::max(m.max_abs_error, error);
       if (f >= 1e-3) m.max_rel_error = std::max(m.max_rel_error, error / f);
     }
-    if (m.path != Path::scalar)
-      m.ops_per_value = simd::ops_per_value({m.family, double(T(s.n))}, m.path == Path::exact ? simd::Tier::exact : simd::Tier::fast,
-                                            sizeof(T) == 4);
+    if (m.path != Path::scalar) m.ops_per_value = simd::ops_per_value(eval.spec(), tier_of(m.path), sizeof(T) == 4);
   }
 }
 
@@ -278,25 +312,28 @@ Machine measure_machine(const Settings& s, tbb::task_arena& arena) {
   return m;
 }
 
-std::vector<Measurement> rows_for(bool single) {
+std::vector<Measurement> rows_for(bool single, const Settings& s) {
   std::vector<Measurement> rows;
   for (const Family family : kFamilies)
-    for (const Path path : kPaths) rows.push_back({family, path, single});
+    for (const Path path : kPaths) rows.push_back({family, family_name(family), path, single});
+  for (const std::string& id : s.user_lobes)
+    for (const Path path : kPaths) rows.push_back({Family::formula, id, path, single});
   return rows;
 }
 
 template <class T>
 std::vector<Measurement> measure_precision(const Settings& s, tbb::task_arena& arena,
                                            const std::function<void(std::string_view)>& progress) {
-  std::vector<Measurement> rows = rows_for(sizeof(T) == 4);
+  std::vector<Measurement> rows = rows_for(sizeof(T) == 4, s);
+  const UserLobes users = user_lobes<T>(s);
   const char* type = sizeof(T) == 4 ? "float" : "double";
   progress(std::string("lobes in ") + type + ": accuracy");
-  measure_accuracy<T>(rows, s);
+  measure_accuracy<T>(rows, s, users);
   progress(std::string("lobes in ") + type + ": in cache");
-  time_in_cache<T>(rows, s, arena);
+  time_in_cache<T>(rows, s, users, arena);
   if (s.streaming) {
     progress(std::string("lobes in ") + type + ": streaming");
-    time_streaming<T>(rows, s, arena);
+    time_streaming<T>(rows, s, users, arena);
   }
   return rows;
 }
@@ -309,7 +346,7 @@ const char* to_string(Path path) noexcept {
 }
 
 const char* family_name(Family family) noexcept {
-  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log"};
+  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log", "formula"};
   return names[static_cast<int>(family)];
 }
 
@@ -336,6 +373,12 @@ const Measurement& Result::at(Family family, Path path, bool single) const {
   throw InvalidArgument("bench: no such measurement");
 }
 
+const Measurement& Result::at(std::string_view lobe, Path path, bool single) const {
+  for (const auto& m : rows)
+    if (m.lobe == lobe && m.path == path && m.single == single) return m;
+  throw InvalidArgument(fmt::format("bench: no measurement of '{}'", lobe));
+}
+
 double Result::compute_limit_ns(const Measurement& m) const noexcept {
   return m.ops_per_value / machine.fma_per_s * 1e9;
 }
@@ -353,7 +396,7 @@ Result run(const Settings& settings, const std::function<void(std::string_view)>
     if (progress_callback) progress_callback(what);
   };
   tbb::task_arena arena;
-  Result result{settings, {}, {}, {}};
+  Result result{settings, {}, {}, {}, {}};
   progress("machine: peak FMA rate and streaming bandwidth");
   result.machine = measure_machine(settings, arena);
   result.rows = measure_precision<float>(settings, arena, progress);
@@ -362,9 +405,15 @@ Result run(const Settings& settings, const std::function<void(std::string_view)>
     result.rows.insert(result.rows.end(), rows.begin(), rows.end());
   }
   progress("lobes against cⁿ");
-  for (const Family family : kFamilies)
+  for (const Family family : kFamilies) {
+    result.lobes.emplace_back(family_name(family));
     result.error_vs_power.push_back(
         analysis::approximation_error(scalar_lobe(family, settings.n), lobes::Power<double>{settings.n}).max_abs);
+  }
+  for (const auto& [id, lobe] : user_lobes<double>(settings)) {
+    result.lobes.push_back(id);
+    result.error_vs_power.push_back(analysis::approximation_error(lobe, lobes::Power<double>{settings.n}).max_abs);
+  }
   return result;
 }
 

@@ -11,7 +11,6 @@ namespace {
 
 using simd::Family;
 
-constexpr Family kFamilies[] = {Family::power, Family::schlick, Family::schlick_modified, Family::gauss, Family::log};
 constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
 
 std::string cell(double v, const char* spec = "{:.3g}") {
@@ -47,7 +46,7 @@ std::string row_line(const Result& r, const Measurement& m, const Measurement& l
   const double compute = r.compute_limit_ns(m);
   const auto [stream_limit, which] = nearer_limit(r, m, false);
   return fmt::format("{:<17} {:<6} {:>9} {:>9} {:>9} {:>9} {:>11} {:>7} {:>10} {:>9} {:>9} {:>8} {:>10}\n",
-                     m.path == Path::scalar ? family_name(m.family) : "", to_string(m.path), cell(m.cache_ns),
+                     m.path == Path::scalar ? m.lobe : "", to_string(m.path), cell(m.cache_ns),
                      cell(m.cache_threads_ns), cell(m.stream_ns), cell(m.stream_threads_ns),
                      cell(m.evals_per_s_per_core()), cell(libm.cache_ns / m.cache_ns, "{:.3g}×"),
                      cell(m.max_rel_error, "{:.2g}"), cell(m.ops_per_value), cell(compute),
@@ -65,8 +64,8 @@ std::string precision_table(const Result& r, bool single) {
       "path", "cache 1c", "cache " + std::to_string(r.machine.threads) + "c", "stream 1c",
       "stream " + std::to_string(r.machine.threads) + "c", "evals/s/core", "× libm", "max rel err", "ops/value",
       "limit ns", "of limit", "stream");
-  for (const Family f : kFamilies)
-    for (const Path p : kPaths) out += row_line(r, r.at(f, p, single), r.at(f, Path::scalar, single));
+  for (const std::string& lobe : r.lobes)
+    for (const Path p : kPaths) out += row_line(r, r.at(lobe, p, single), r.at(lobe, Path::scalar, single));
   return out;
 }
 
@@ -82,9 +81,9 @@ std::string baselines(const Result& r) {
       cell(pow_fast.cache_ns), cell(pow_libm.cache_ns / pow_fast.cache_ns), cell(r.at(Family::schlick, Path::scalar, true).cache_ns),
       cell(r.at(Family::schlick, Path::exact, true).cache_ns), "lobe", "÷ libm cⁿ", "÷ SIMD cⁿ", "÷ fast cⁿ",
       "max |F − cⁿ|");
-  for (std::size_t i = 0; i < std::size(kFamilies); ++i) {
-    const Family f = kFamilies[i];
-    out += fmt::format("{:<17} {:>12} {:>12} {:>12} {:>14}\n", family_name(f),
+  for (std::size_t i = 0; i < r.lobes.size(); ++i) {
+    const std::string& f = r.lobes[i];
+    out += fmt::format("{:<17} {:>12} {:>12} {:>12} {:>14}\n", f,
                        cell(r.at(f, Path::scalar, true).cache_ns / pow_libm.cache_ns, "{:.3g}×"),
                        cell(r.at(f, Path::exact, true).cache_ns / pow_exact.cache_ns, "{:.3g}×"),
                        cell(r.at(f, Path::fast, true).cache_ns / pow_fast.cache_ns, "{:.3g}×"),
@@ -113,7 +112,7 @@ nlohmann::ordered_json measurement_json(const Result& r, const Measurement& m) {
   j["max_abs_error"] = m.max_abs_error;
   j["ns_per_eval"] = {{"cache", number(m.cache_ns)}, {"cache_all_cores", number(m.cache_threads_ns)},
                       {"stream", number(m.stream_ns)}, {"stream_all_cores", number(m.stream_threads_ns)}};
-  j["ratio_to_scalar"] = number(r.at(m.family, Path::scalar, m.single).cache_ns / m.cache_ns);
+  j["ratio_to_scalar"] = number(r.at(m.lobe, Path::scalar, m.single).cache_ns / m.cache_ns);
   j["ops_per_value"] = number(m.ops_per_value);
   j["compute_limit_ns"] = number(r.compute_limit_ns(m));
   j["memory_limit_ns"] = number(r.memory_limit_ns(m, false));
@@ -125,8 +124,9 @@ nlohmann::ordered_json measurement_json(const Result& r, const Measurement& m) {
 }
 
 nlohmann::ordered_json lobe_json(const Result& r, std::size_t i) {
-  const Family f = kFamilies[i];
+  const std::string& f = r.lobes[i];
   nlohmann::ordered_json lobe;
+  lobe["user_model"] = r.at(f, Path::scalar, true).family == Family::formula;
   lobe["max_abs_error_vs_power"] = r.error_vs_power[i];
   for (const Path p : kPaths) {
     const Measurement& single = r.at(f, p, true);
@@ -164,7 +164,7 @@ std::string to_json(const Result& result) {
   j["settings"] = {{"cache_bytes", result.settings.cache_bytes}, {"stream_bytes", result.settings.stream_bytes},
                    {"trial_seconds", result.settings.trial_seconds}, {"trials", result.settings.trials},
                    {"streaming", result.settings.streaming}, {"threaded", result.settings.threaded}};
-  for (std::size_t i = 0; i < std::size(kFamilies); ++i) j["lobes"][family_name(kFamilies[i])] = lobe_json(result, i);
+  for (std::size_t i = 0; i < result.lobes.size(); ++i) j["lobes"][result.lobes[i]] = lobe_json(result, i);
   return j.dump(2) + "\n";
 }
 

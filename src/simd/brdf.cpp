@@ -8,6 +8,7 @@
 
 #include "specula/exceptions.h"
 #include "specula/simd/brdf.h"
+#include "specula/simd/formula.h"
 #include "src/simd/model_desc.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -279,7 +280,8 @@ void lobe_model_batch(const Model& model, Tier tier, const DirectionBatch& dirs,
 }
 
 /// A formula BRDF in chunks: the dot products (as FormulaBrdf::operator() computes them), then
-/// the program over the chunk, then 0 below the horizon.
+/// the program over the chunk through the vectorized formula path (simd/formula.h, double lanes
+/// at both tiers), then 0 below the horizon.
 void formula_brdf_batch(const FormulaBrdf& brdf, const DirectionBatch& dirs, std::size_t count, double* out) {
   std::array<std::array<double, kChunk>, FormulaBrdf::kInputs.size()> dots;
   for (std::size_t first = 0; first < count; first += kChunk) {
@@ -294,7 +296,7 @@ void formula_brdf_batch(const FormulaBrdf& brdf, const DirectionBatch& dirs, std
     }
     std::array<std::span<const double>, FormulaBrdf::kInputs.size()> inputs;
     for (std::size_t k = 0; k < inputs.size(); ++k) inputs[k] = {dots[k].data(), n};
-    brdf.program->evaluate_batch(inputs, brdf.params, {out + first, n});
+    eval_program(*brdf.program, inputs, brdf.params, {out + first, n});
     for (std::size_t i = 0; i < n; ++i)
       if (dots[0][i] <= 0 || dots[1][i] <= 0) out[first + i] = 0;
   }

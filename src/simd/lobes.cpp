@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <variant>
 
+#include "specula/simd/formula.h"
 #include "specula/simd/lobes.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -62,7 +63,7 @@ auto WithKernel(const LobeSpec& lobe, Tier tier, const Visit& visit) {
                                 : visit(d, LogFast<D, false>(d, lobe.n), Lanes::native);
       return near_one ? visit(dd, LogExact<DD, is_float, true>(dd, lobe.n), exact_lanes)
                       : visit(dd, LogExact<DD, is_float, false>(dd, lobe.n), exact_lanes);
-    case Family::formula: break;  // never dispatched: eval_batch evaluates formulas itself
+    case Family::formula: break;  // never dispatched: eval_batch sends formulas to simd/formula.h
   }
   return visit(d, Schlick<D, false>(d, lobe.n), Lanes::native);  // unreachable: every family above
 }
@@ -117,18 +118,12 @@ LobeSpec spec_of(const lobes::Lobe& lobe) noexcept {
 }
 
 void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const float> c, std::span<float> out) noexcept {
-  if (lobe.family == Family::formula) {
-    const std::size_t count = std::min(c.size(), out.size());
-    std::vector<double> wide(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(count)), f(count);
-    lobe.formula->eval_batch(wide, f);
-    std::copy(f.begin(), f.end(), out.begin());
-    return;
-  }
+  if (lobe.family == Family::formula) return eval_formula(*lobe.formula, tier, c, out);
   HWY_DYNAMIC_DISPATCH(EvalLobeF32)(lobe, tier, c.data(), std::min(c.size(), out.size()), out.data());
 }
 
 void eval_batch(const LobeSpec& lobe, Tier tier, std::span<const double> c, std::span<double> out) noexcept {
-  if (lobe.family == Family::formula) return lobe.formula->eval_batch(c, out);
+  if (lobe.family == Family::formula) return eval_formula(*lobe.formula, tier, c, out);
   HWY_DYNAMIC_DISPATCH(EvalLobeF64)(lobe, tier, c.data(), std::min(c.size(), out.size()), out.data());
 }
 

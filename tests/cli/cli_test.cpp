@@ -742,6 +742,51 @@ TEST_F(Cli, BenchQuickJsonHoldsEveryLobeAndTier) {
   EXPECT_GT(j["lobes"]["log"]["fast"]["float"]["ops_per_value"].get<double>(), 0);
 }
 
+TEST_F(Cli, BenchMeasuresUserLobesBesideTheBuiltIns) {
+  // --models FILE: a user lobe gets the three paths, with finite times, beside the built-ins; a
+  // full BRDF is no lobe. (One lobe of builtin-copies.toml: every bench run times every row.)
+  const fs::path models = work() / "models.toml";
+  std::ofstream(models) << R"toml([[model]]
+id = "my-log"
+name = "log lobe, my copy"
+kind = "lobe"
+form = "rv"
+lobe = "max(0, 1 - 0.5*log2(1 - n*log2(c)))"
+normalization = "none"
+[model.params.n]
+default = 20
+min = 0
+min_exclusive = true
+max = 1e9
+
+[[model]]
+id = "my-lambert"
+name = "Lambert, a user's copy"
+kind = "brdf"
+brdf = "rho/pi"
+[model.params.rho]
+default = 1
+min = 0
+max = 1
+)toml";
+  const Result r = ok({"--models", models.string(), "bench", "--quick", "--format", "json"});
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.out)) << r;
+  ASSERT_TRUE(j["lobes"].contains("my-log")) << r.out;
+  EXPECT_TRUE(j["lobes"]["my-log"]["user_model"].get<bool>());
+  EXPECT_FALSE(j["lobes"]["log"]["user_model"].get<bool>());
+  EXPECT_FALSE(j["lobes"].contains("my-lambert"));
+  for (const char* tier : {"scalar", "exact", "fast"}) {
+    const auto& t = j["lobes"]["my-log"][tier];
+    EXPECT_GT(t["evals_per_s_per_core"].get<double>(), 0) << tier;
+    EXPECT_GT(t["double"]["ns_per_eval"]["cache"].get<double>(), 0) << tier;
+    EXPECT_GT(t["float"]["ns_per_eval"]["stream"].get<double>(), 0) << tier;
+  }
+  EXPECT_LE(j["lobes"]["my-log"]["fast"]["max_rel_error"].get<double>(), 1e-4);
+  EXPECT_LE(j["lobes"]["my-log"]["exact"]["max_rel_error"].get<double>(), 0x1p-24 + 16 * 0x1p-52);
+  EXPECT_NEAR(j["lobes"]["my-log"]["max_abs_error_vs_power"].get<double>(), 0.125, 1e-6);  // as the built-in's
+}
+
 TEST_F(Cli, BenchTableHasRatiosBaselinesAndLimits) {
   const Result r = ok({"bench", "--quick", "--n", "50"});
   EXPECT_THAT(r.out, HasSubstr("every lobe at n = 50"));

@@ -31,6 +31,10 @@ struct Settings {
   bool streaming = true;
   bool threaded = true;                   ///< all cores as well as one (oneTBB)
   std::size_t accuracy_points = 1 << 15;  ///< cosines per region of the accuracy probe
+  /// User lobe models (registered ids, models/model_file.h) measured beside the built-ins, at n
+  /// where they have a parameter n: scalar = the Formula per value (expr::Program, libm), exact
+  /// and fast = the vectorized formula path (simd/formula.h).
+  std::vector<std::string> user_lobes;
 
   static Settings full() { return {}; }
   /// A few seconds: smaller streamed arrays, shorter and fewer trials.
@@ -42,7 +46,8 @@ struct Settings {
 /// One lobe through one path in one precision. Times are ns per evaluation per core (wall time ×
 /// cores / evaluations); NaN where not measured.
 struct Measurement {
-  simd::Family family;
+  simd::Family family;  ///< Family::formula for a user lobe
+  std::string lobe;     ///< family_name(family), or the user model's id
   Path path;
   bool single = true;  ///< float lanes (else double)
   double cache_ns = NAN, cache_threads_ns = NAN, stream_ns = NAN, stream_threads_ns = NAN;
@@ -66,10 +71,12 @@ struct Machine {
 struct Result {
   Settings settings;
   Machine machine;
-  std::vector<Measurement> rows;             ///< families × paths × precisions
-  std::vector<double> error_vs_power;        ///< per family (simd::Family order): max |F − cⁿ| at n
+  std::vector<Measurement> rows;             ///< lobes × paths × precisions
+  std::vector<std::string> lobes;            ///< the built-in families (simd::Family order), then the user lobes
+  std::vector<double> error_vs_power;        ///< per lobe (lobes' order): max |F − cⁿ| at n
 
   const Measurement& at(simd::Family family, Path path, bool single) const;
+  const Measurement& at(std::string_view lobe, Path path, bool single) const;
   /// ns per value at the compute limit: ops per value ÷ the peak vector rate (SIMD paths).
   double compute_limit_ns(const Measurement& m) const noexcept;
   /// ns per value at the memory limit: bytes per value (read c, write F) ÷ copy bandwidth.
