@@ -38,10 +38,8 @@ void add_bench_command(CLI::App& app) {
       "  specula bench --models examples/models/builtin-copies.toml\n"
       "  specula bench --format json | jq '.lobes.log.fast.evals_per_s_per_core'");
   cmd->callback([o] {
-    cost::Settings settings = o->quick ? cost::Settings::quick() : cost::Settings::full();
+    cost::Settings settings = (o->quick ? cost::Settings::quick() : cost::Settings::full()).with_registered_user_lobes();
     settings.n = o->n;
-    for (const ModelInfo& info : models())
-      if (!info.is_builtin() && info.kind == ModelKind::lobe) settings.user_lobes.push_back(info.id);
     auto progress = [verbose = o->verbose](std::string_view phase) {
       if (verbose) fmt::print(stderr, "bench: {}\n", phase);
     };

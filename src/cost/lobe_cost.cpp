@@ -359,6 +359,14 @@ Settings Settings::quick() {
   return s;
 }
 
+Settings Settings::with_registered_user_lobes() const {
+  Settings s = *this;
+  s.user_lobes.clear();
+  for (const ModelInfo& info : models())
+    if (!info.is_builtin() && info.kind == ModelKind::lobe) s.user_lobes.push_back(info.id);
+  return s;
+}
+
 Settings Settings::report(bool quick) {
   Settings s = quick ? Settings::quick() : Settings::full();
   s.streaming = false;

@@ -141,14 +141,18 @@ const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
   return *it;
 }
 
-constexpr simd::Family kFamilies[] = {simd::Family::power, simd::Family::schlick, simd::Family::schlick_modified,
-                                      simd::Family::gauss, simd::Family::log};
 constexpr cost::Path kPaths[] = {cost::Path::scalar, cost::Path::exact, cost::Path::fast};
 
-/// The registry id whose colour a lobe family takes in every figure.
-const char* colour_id(simd::Family family) {
+/// The colour of the benchmark's lobe `i` (Result::lobes): a built-in family takes the colour of
+/// its registry id, a user lobe its own.
+std::string lobe_colour(const cost::Result& r, std::size_t i) {
   constexpr const char* ids[] = {"phong", "schlick", "schlick-modified", "gauss", "log"};
-  return ids[static_cast<int>(family)];
+  return model_colour(i < std::size(ids) ? ids[i] : r.lobes[i]);
+}
+
+/// The index of the lobe named `lobe` in Result::lobes.
+std::size_t lobe_index(const cost::Result& r, std::string_view lobe) {
+  return static_cast<std::size_t>(std::find(r.lobes.begin(), r.lobes.end(), lobe) - r.lobes.begin());
 }
 
 /// One point per lobe and path (float, in cache, one core): ns per evaluation against the
@@ -158,10 +162,11 @@ Chart cost_chart(const cost::Result& r) {
               {"cost (ns per evaluation, float, in cache, one core)", Scale::log, std::nullopt, std::nullopt},
               {"max |F − cⁿ| (the lobe against Phong's)", Scale::log, std::nullopt, std::nullopt}, {}};
   double y_lo = INFINITY, y_hi = 0;
-  for (std::size_t i = 1; i < std::size(kFamilies); ++i) {
-    Series s{cost::family_name(kFamilies[i]), model_colour(colour_id(kFamilies[i])), {}, {}, Stroke::solid, true, {}};
+  for (std::size_t i = 1; i < r.lobes.size(); ++i) {  // 0 is cⁿ itself: the dashed lines below
+    if (!(r.error_vs_power[i] > 0)) continue;           // no error against cⁿ to place it by
+    Series s{r.lobes[i], lobe_colour(r, i), {}, {}, Stroke::solid, true, {}};
     for (const auto path : kPaths) {
-      s.x.push_back(r.at(kFamilies[i], path, true).cache_ns);
+      s.x.push_back(r.at(r.lobes[i], path, true).cache_ns);
       s.y.push_back(r.error_vs_power[i]);
       s.point_labels.push_back(cost::to_string(path));
     }
@@ -184,11 +189,11 @@ Chart cost_chart(const cost::Result& r) {
 
 std::string bench_table(const cost::Result& r) {
   std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < std::size(kFamilies); ++i)
+  for (std::size_t i = 0; i < r.lobes.size(); ++i)
     for (const auto path : kPaths) {
-      const cost::Measurement& m = r.at(kFamilies[i], path, true);
-      const double scalar = r.at(kFamilies[i], cost::Path::scalar, true).cache_ns;
-      rows.push_back({cost::family_name(kFamilies[i]), cost::to_string(path), show(m.cache_ns, 3),
+      const cost::Measurement& m = r.at(r.lobes[i], path, true);
+      const double scalar = r.at(r.lobes[i], cost::Path::scalar, true).cache_ns;
+      rows.push_back({xml_escape(r.lobes[i]), cost::to_string(path), show(m.cache_ns, 3),
                       show(scalar / m.cache_ns, 3) + "×", show(m.evals_per_s_per_core(), 3), show(m.max_rel_error, 2),
                       show(r.error_vs_power[i], 4)});
     }
@@ -203,9 +208,9 @@ DataTable bench_data(const cost::Result& r) {
                    "max_abs_error_vs_power"},
                   {}};
   for (const auto& m : r.rows)
-    table.rows.push_back({std::string(cost::family_name(m.family)), std::string(cost::to_string(m.path)),
-                          std::string(m.single ? "float" : "double"), m.cache_ns, m.evals_per_s_per_core(),
-                          m.max_rel_error, m.max_abs_error, r.error_vs_power[static_cast<std::size_t>(m.family)]});
+    table.rows.push_back({m.lobe, std::string(cost::to_string(m.path)), std::string(m.single ? "float" : "double"),
+                          m.cache_ns, m.evals_per_s_per_core(), m.max_rel_error, m.max_abs_error,
+                          r.error_vs_power[lobe_index(r, m.lobe)]});
   return table;
 }
 
@@ -249,7 +254,7 @@ std::string relative_costs(const std::vector<Cost>& costs) {
 
 Section cost_section(Context& context) {
   context.progress("Cost: evaluation time against accuracy");
-  const cost::Result simd = cost::run(cost::Settings::report(context.quick()));
+  const cost::Result simd = cost::run(cost::Settings::report(context.quick()).with_registered_user_lobes());
   const std::vector<Cost> costs = measure_costs(context);
   const std::string links = context.save(cost_data(costs));
   const std::string simd_links = context.save(bench_data(simd));

@@ -264,6 +264,12 @@ TEST_F(BeyondThePaperTest, CostTableListsEveryModel) {
   EXPECT_EQ(row(cost, {"phong", "lobe"})[4], "0");
   EXPECT_EQ(row(cost, {"ggx", "brdf"})[4], "—");
   EXPECT_NE(cost.find("of the machine that wrote this report"), std::string::npos);
+  // The user's lobes (tests/report/user_lobes.toml) through the benchmark's three paths too.
+  for (const char* path : {"scalar", "exact", "fast"}) {
+    EXPECT_EQ(row(cost, {"quartic", path}).size(), 7u) << path;
+    EXPECT_EQ(row(cost, {"lobe-c8", path}).size(), 7u) << path;
+  }
+  EXPECT_NE(read_file(dir() / "cost-accuracy.svg").find(">quartic</text>"), std::string::npos);
 }
 
 }  // namespace

@@ -35,6 +35,8 @@ struct Settings {
   /// where they have a parameter n: scalar = the Formula per value (expr::Program, libm), exact
   /// and fast = the vectorized formula path (simd/formula.h).
   std::vector<std::string> user_lobes;
+  /// The same settings with user_lobes = every registered user lobe model (models()).
+  Settings with_registered_user_lobes() const;
 
   static Settings full() { return {}; }
   /// A few seconds: smaller streamed arrays, shorter and fewer trials.
