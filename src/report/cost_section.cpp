@@ -16,6 +16,7 @@
 #include "specula/brdf/directions.h"
 #include "specula/cost/lobe_cost.h"
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/models/model.h"
 #include "specula/report/plot.h"
 
@@ -111,7 +112,7 @@ std::vector<Point> points_by_lobe(const std::vector<Cost>& costs) {
   std::vector<Point> points;
   for (const auto& c : costs) {
     if (!c.max_abs_error) continue;
-    const std::string family = lobes::family_name(c.model.lobe());
+    const std::string family(families::family_name(c.model.lobe()));
     const Form form = c.model.form();
     auto same = std::find_if(points.begin(), points.end(), [&](const Point& p) {
       return p.family == family && p.form == form && p.error == *c.max_abs_error;
@@ -141,15 +142,15 @@ const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
   return *it;
 }
 
-constexpr simd::Family kFamilies[] = {simd::Family::power, simd::Family::schlick, simd::Family::schlick_modified,
-                                      simd::Family::gauss, simd::Family::log};
 constexpr cost::Path kPaths[] = {cost::Path::scalar, cost::Path::exact, cost::Path::fast};
 
-/// The registry id whose colour a lobe family takes in every figure.
-const char* colour_id(simd::Family family) {
-  constexpr const char* ids[] = {"phong", "schlick", "schlick-modified", "gauss", "log"};
-  return ids[static_cast<int>(family)];
+/// The lobe families (families/families.h), in simd::Family order.
+std::span<const families::Family* const> lobe_families() {
+  return std::span(families::kFamilies).first(families::kLobeFamilyCount);
 }
+
+/// The registry id whose colour a lobe family takes in every figure: its first model's.
+std::string_view colour_id(const families::Family& family) { return family.models.front().id; }
 
 /// One point per lobe and path (float, in cache, one core): ns per evaluation against the
 /// lobe's max |F − cⁿ|, the three paths of a lobe joined; cⁿ itself (error 0) as vertical lines.
@@ -158,10 +159,11 @@ Chart cost_chart(const cost::Result& r) {
               {"cost (ns per evaluation, float, in cache, one core)", Scale::log, std::nullopt, std::nullopt},
               {"max |F − cⁿ| (the lobe against Phong's)", Scale::log, std::nullopt, std::nullopt}, {}};
   double y_lo = INFINITY, y_hi = 0;
-  for (std::size_t i = 1; i < std::size(kFamilies); ++i) {
-    Series s{cost::family_name(kFamilies[i]), model_colour(colour_id(kFamilies[i])), {}, {}, Stroke::solid, true, {}};
+  for (std::size_t i = 1; i < lobe_families().size(); ++i) {
+    const families::Family& family = *lobe_families()[i];
+    Series s{std::string(family.name), model_colour(colour_id(family)), {}, {}, Stroke::solid, true, {}};
     for (const auto path : kPaths) {
-      s.x.push_back(r.at(kFamilies[i], path, true).cache_ns);
+      s.x.push_back(r.at(family.simd, path, true).cache_ns);
       s.y.push_back(r.error_vs_power[i]);
       s.point_labels.push_back(cost::to_string(path));
     }
@@ -184,11 +186,12 @@ Chart cost_chart(const cost::Result& r) {
 
 std::string bench_table(const cost::Result& r) {
   std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < std::size(kFamilies); ++i)
+  for (std::size_t i = 0; i < lobe_families().size(); ++i)
     for (const auto path : kPaths) {
-      const cost::Measurement& m = r.at(kFamilies[i], path, true);
-      const double scalar = r.at(kFamilies[i], cost::Path::scalar, true).cache_ns;
-      rows.push_back({cost::family_name(kFamilies[i]), cost::to_string(path), show(m.cache_ns, 3),
+      const families::Family& family = *lobe_families()[i];
+      const cost::Measurement& m = r.at(family.simd, path, true);
+      const double scalar = r.at(family.simd, cost::Path::scalar, true).cache_ns;
+      rows.push_back({std::string(family.name), cost::to_string(path), show(m.cache_ns, 3),
                       show(scalar / m.cache_ns, 3) + "×", show(m.evals_per_s_per_core(), 3), show(m.max_rel_error, 2),
                       show(r.error_vs_power[i], 4)});
     }
@@ -203,7 +206,7 @@ DataTable bench_data(const cost::Result& r) {
                    "max_abs_error_vs_power"},
                   {}};
   for (const auto& m : r.rows)
-    table.rows.push_back({std::string(cost::family_name(m.family)), std::string(cost::to_string(m.path)),
+    table.rows.push_back({std::string(families::lobe_family(m.family).name), std::string(cost::to_string(m.path)),
                           std::string(m.single ? "float" : "double"), m.cache_ns, m.evals_per_s_per_core(),
                           m.max_rel_error, m.max_abs_error, r.error_vs_power[static_cast<std::size_t>(m.family)]});
   return table;
