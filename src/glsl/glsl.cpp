@@ -78,13 +78,15 @@ FormShader form_shader(Form form) {
   throw std::logic_error("a form without its shader");
 }
 
-/// The GLSL file a built-in model's definition names (families/<family>.h): its k(n) or its BRDF.
-std::string_view model_file(const Model& model) { return families::find_builtin(model.id()).model->glsl_file; }
+/// A built-in model's definition (families/<family>.h); nullptr for a user's model.
+const families::ModelDefinition* builtin_definition(const Model& model) {
+  return families::family_of(model.info()) ? families::find_builtin(model.id()).model : nullptr;
+}
 
 /// Adds a built-in lobe model's own k(n) and returns its function's name; "" when the model has
 /// no coefficient file (k = 1).
 std::string add_coef(ShaderSource& src, const Model& model) {
-  const std::string_view path = model_file(model);
+  const std::string_view path = builtin_definition(model)->glsl_file;
   if (path.empty()) return "";
   src.add_file(path);
   return coefficient_function(path);
@@ -240,8 +242,8 @@ std::string model_glsl(const Model& model) {
   ShaderSource src(computed_values());
   if (model.is_lobe())
     add_lobe_entry(src, model);
-  else if (model.info().is_builtin())
-    src.add_file(model_file(model));
+  else if (const families::ModelDefinition* builtin = builtin_definition(model))
+    src.add_file(builtin->glsl_file);
   else
     add_formula_brdf(src, model);
   src.add("specula_brdf",
