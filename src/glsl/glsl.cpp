@@ -10,8 +10,8 @@
 
 #include "formula_glsl.h"
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/normalize/log_coef_float.h"
-#include "src/glsl/family_shaders.h"
 #include "src/glsl/shader_files.h"
 
 namespace specula::glsl {
@@ -64,11 +64,30 @@ std::string coefficient_function(std::string_view path) {
   return name;
 }
 
-/// Adds the model's own k(n), coefficients/<id>.glsl, and returns its function's name; "" when
-/// the model has no file there (k = 1).
-std::string add_coef(ShaderSource& src, std::string_view id) {
-  const std::string path = fmt::format("coefficients/{}.glsl", id);
-  if (!find_shader_file(path)) return "";
+/// A form's cosine c(N, L, V): its file and function.
+struct FormShader {
+  std::string_view file;
+  std::string_view function;
+};
+
+FormShader form_shader(Form form) {
+  switch (form) {
+    case Form::rv: return {"forms/rv.glsl", "specula_cos_rv"};
+    case Form::nh: return {"forms/nh.glsl", "specula_cos_nh"};
+  }
+  throw std::logic_error("a form without its shader");
+}
+
+/// A built-in model's definition (families/<family>.h); nullptr for a user's model.
+const families::ModelDefinition* builtin_definition(const Model& model) {
+  return families::family_of(model.info()) ? families::find_builtin(model.id()).model : nullptr;
+}
+
+/// Adds a built-in lobe model's own k(n) and returns its function's name; "" when the model has
+/// no coefficient file (k = 1).
+std::string add_coef(ShaderSource& src, const Model& model) {
+  const std::string_view path = builtin_definition(model)->glsl_file;
+  if (path.empty()) return "";
   src.add_file(path);
   return coefficient_function(path);
 }
@@ -129,21 +148,22 @@ std::string coefficient_expression(ShaderSource& src, const Model& model) {
     if (model.info().coef_program) return coefficient_formula(*model.info().coef_program);
     return model.info().normalization == Normalization::none ? "" : lit(model.coef());  // quadrature: baked
   }
-  const std::string function = add_coef(src, model.id());
+  const std::string function = add_coef(src, model);
   if (function.empty() && model.info().normalization != Normalization::none)
     throw std::logic_error(fmt::format("no GLSL coefficient for model '{}'", model.id()));
   return function.empty() ? "" : function + "(n)";
 }
 
+/// f = k F(c): the form's cosine, the lobe (its family's file, or a user's formula) and k.
 void add_lobe_entry(ShaderSource& src, const Model& model) {
   const FormShader form = form_shader(model.form());
-  const LobeShader lobe = lobe_shader_of(model.lobe());
+  const families::Family* family = families::family_of(model.info());
   src.add_file(form.file);
-  if (!lobe.file.empty()) src.add_file(lobe.file);
+  if (family) src.add_file(family->glsl.file);
   const std::string k = coefficient_expression(src, model);
-  const std::string lobe_value = lobe.file.empty()
-                                     ? add_formula_lobe(src, model, form.function)
-                                     : fmt::format("{}({}(N, L, V), n{})", lobe.function, form.function, lobe.extra_args);
+  const std::string lobe_value =
+      family ? fmt::format("{}({}(N, L, V), n{})", family->glsl.function, form.function, family->glsl.extra_args)
+             : add_formula_lobe(src, model, form.function);
   src.add(entry_name(model),
           fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  return {};\n}}",
@@ -222,8 +242,8 @@ std::string model_glsl(const Model& model) {
   ShaderSource src(computed_values());
   if (model.is_lobe())
     add_lobe_entry(src, model);
-  else if (const std::string_view file = brdf_shader_of(model.brdf()); !file.empty())
-    src.add_file(file);
+  else if (const families::ModelDefinition* builtin = builtin_definition(model))
+    src.add_file(builtin->glsl_file);
   else
     add_formula_brdf(src, model);
   src.add("specula_brdf",

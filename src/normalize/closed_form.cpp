@@ -3,6 +3,8 @@
 #include <boost/math/special_functions/expint.hpp>
 #include <cmath>
 
+#include "specula/families/families.h"
+
 namespace specula::normalize {
 namespace {
 
@@ -72,12 +74,13 @@ double log_rv(double n) noexcept {
 }
 
 std::optional<double> closed_form(const lobes::Lobe& lobe, Form form) noexcept {
-  if (const auto* p = std::get_if<lobes::Power<double>>(&lobe))
-    return form == Form::rv ? phong_rv(p->n) : blinn_phong_nh(p->n);
-  if (form != Form::rv) return std::nullopt;
-  if (const auto* s = std::get_if<lobes::Schlick<double>>(&lobe)) return schlick_rv(s->n);
-  if (const auto* l = std::get_if<lobes::Log<double>>(&lobe)) return log_rv(l->n);
-  return std::nullopt;
+  if (lobe.index() >= families::kLobeFamilyCount) return std::nullopt;  // a user's formula
+  const families::Coefficient k = families::kFamilies[lobe.index()]->closed_form.in(form);
+  if (!k) return std::nullopt;
+  return k(std::visit([](const auto& l) {
+    if constexpr (requires { l.n; }) return l.n;
+    else return 0.0;  // lobes::Formula: excluded above
+  }, lobe));
 }
 
 }  // namespace specula::normalize

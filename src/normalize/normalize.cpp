@@ -3,6 +3,7 @@
 #include <string>
 
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/interrupt/interrupt.h"
 
 namespace specula::normalize {
@@ -13,7 +14,7 @@ double coefficient(const lobes::Lobe& lobe, Form form, Method method) {
   if (const auto exact = closed_form(lobe, form)) return *exact;
   if (method == Method::exact)
     throw InvalidArgument(std::string("no closed-form normalization is known for the ") +
-                          lobes::family_name(lobe) + " lobe in " + to_string(form) +
+                          std::string(families::family_name(lobe)) + " lobe in " + to_string(form) +
                           " form; use --method quadrature");
   return quadrature(lobe, form);
 }

@@ -16,6 +16,7 @@
 #include "specula/brdf/directions.h"
 #include "specula/cost/lobe_cost.h"
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/models/model.h"
 #include "specula/report/plot.h"
 
@@ -111,7 +112,7 @@ std::vector<Point> points_by_lobe(const std::vector<Cost>& costs) {
   std::vector<Point> points;
   for (const auto& c : costs) {
     if (!c.max_abs_error) continue;
-    const std::string family = lobes::family_name(c.model.lobe());
+    const std::string family(families::family_name(c.model.lobe()));
     const Form form = c.model.form();
     auto same = std::find_if(points.begin(), points.end(), [&](const Point& p) {
       return p.family == family && p.form == form && p.error == *c.max_abs_error;
@@ -143,11 +144,14 @@ const Cost& cost_of(const std::vector<Cost>& costs, std::string_view id) {
 
 constexpr cost::Path kPaths[] = {cost::Path::scalar, cost::Path::exact, cost::Path::fast};
 
-/// The colour of the benchmark's lobe `i` (Result::lobes): a built-in family takes the colour of
-/// its registry id, a user lobe its own.
+/// The registry id whose colour a lobe family takes in every figure: its first model's.
+std::string_view colour_id(const families::Family& family) { return family.models.front().id; }
+
+/// The colour of the benchmark's lobe `i` (Result::lobes: the lobe families in simd::Family
+/// order, then the user's lobes): a family takes its first model's colour, a user lobe its own.
 std::string lobe_colour(const cost::Result& r, std::size_t i) {
-  constexpr const char* ids[] = {"phong", "schlick", "schlick-modified", "gauss", "log"};
-  return model_colour(i < std::size(ids) ? ids[i] : r.lobes[i]);
+  if (i >= families::kLobeFamilyCount) return model_colour(r.lobes[i]);
+  return model_colour(colour_id(*families::kFamilies[i]));
 }
 
 /// The index of the lobe named `lobe` in Result::lobes.

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/simd/brdf.h"
 #include "specula/simd/formula.h"
 #include "src/simd/model_desc.h"
@@ -321,11 +322,9 @@ ErrorBound error_bound(const Model& model, Tier tier) noexcept {
     const double k = model.coef();
     return {b.rel + eps, b.rel_per_ln, b.abs * k, b.floor * k, b.abs_below * k};
   }
-  const auto kind = describe(model.brdf()).kind;
-  if (kind == ModelDesc::Kind::formula) return {};  // bit-identical to FormulaBrdf
-  const bool exponential = kind != ModelDesc::Kind::ggx && kind != ModelDesc::Kind::lambert;
-  if (!exponential) return {2 * eps};
-  return tier == Tier::fast ? ErrorBound{2e-6, 0, 0, 0x1p-1000, 0x1p-1000} : ErrorBound{4 * eps, 0, 0, 0x1p-1000, 0x1p-1000};
+  const families::Family* family = families::family_of(model.info());
+  if (!family) return {};  // a user's formula: bit-identical to FormulaBrdf
+  return family->bounds.of(tier, false);
 }
 
 }  // namespace specula::simd

@@ -3,6 +3,7 @@
 // n ≥ 6 shortcut) happens once per batch, in WithKernel, which also serves the kernels' operation
 // counts to the benchmark.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <variant>
 
@@ -22,6 +23,15 @@ namespace specula::simd::HWY_NAMESPACE {
 /// How a kernel meets arrays of T: in its own lanes, or (float arrays, exact tier) promoted to
 /// double lanes and rounded back.
 enum class Lanes { native, promoted };
+
+/// The kernel of a family that has none of its own: NaN, and no operations counted
+/// (families::has_kernel tells it apart by that).
+template <class D>
+struct NoKernel {
+  static constexpr int kOps = 0;
+  D d;
+  HWY_INLINE V<D> operator()(V<D>) const { return hn::Set(d, hn::TFromD<D>(NAN)); }
+};
 
 /// visit(d, kernel, lanes) with the kernel that evaluates `lobe` at `tier` for arrays of T.
 template <class T, class Visit>
@@ -65,7 +75,7 @@ auto WithKernel(const LobeSpec& lobe, Tier tier, const Visit& visit) {
                       : visit(dd, LogExact<DD, is_float, false>(dd, lobe.n), exact_lanes);
     case Family::formula: break;  // never dispatched: eval_batch sends formulas to simd/formula.h
   }
-  return visit(d, Schlick<D, false>(d, lobe.n), Lanes::native);  // unreachable: every family above
+  return visit(d, NoKernel<D>{d}, Lanes::native);
 }
 
 template <class T>

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "reference_table.h"
+#include "specula/families/families.h"
 #include "specula/lobes/lobes.h"
 
 namespace specula::lobes {
@@ -125,7 +126,7 @@ TEST(Lobes, AtLogCosAgreesWithEvaluationInC) {
                                Lobe{Gauss<>{n}}, Lobe{Log<>{n}}}) {
         const double in_c = eval(lobe, c);
         EXPECT_NEAR(at_log_cos(lobe, u), in_c, 1e-9 * (1 + in_c) + 1e-12 * n * u)
-            << family_name(lobe) << " n=" << n << " u=" << u;
+            << families::family_name(lobe) << " n=" << n << " u=" << u;
       }
     }
 }

@@ -1,5 +1,5 @@
 // The SIMD batch lobes against the scalar double lobes, held to exactly the bounds that
-// include/specula/simd/lobes.h states (error_bound), on every instruction set this CPU runs:
+// each family states (include/specula/families/<family>.h; simd::error_bound), on every instruction set this CPU runs:
 // dense and random cosines, cosines dense in t = −n log₂ c (the log lobe's own variable, docs/math.md
 // §3) and in the angle (Gauss), powers of two down to the subnormals, and the edge cases.
 #include <gtest/gtest.h>
@@ -16,32 +16,33 @@
 #include <vector>
 
 #include "simd/probe_cosines.h"
+#include "specula/families/families.h"
 #include "specula/simd/lobes.h"
 #include "specula/simd/targets.h"
 
 namespace specula::simd {
 namespace {
 
-constexpr Family kFamilies[] = {Family::power, Family::schlick, Family::schlick_modified, Family::gauss, Family::log};
+/// The built-in lobe families' kernels, in the order of their definitions (families/families.h).
+const std::vector<Family> kFamilies = [] {
+  std::vector<Family> all;
+  for (std::size_t i = 0; i < families::kLobeFamilyCount; ++i) all.push_back(families::kFamilies[i]->simd);
+  return all;
+}();
 constexpr Tier kTiers[] = {Tier::exact, Tier::fast};
 // n across the valid range, with the log kernels' switch at n = 6 on both sides.
 constexpr double kExponents[] = {1e-3, 0.1, 1, 2, 5, 5.999, 6, 20, 100, 1000, 1e4, 1e6, 1e9};
 
-const char* family_name(Family family) {
-  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log"};
-  return names[static_cast<int>(family)];
+std::string_view family_name(Family family) {
+  return family == Family::formula ? "formula" : families::lobe_family(family).name;
 }
 
-double reference(const LobeSpec& lobe, double c) {
-  switch (lobe.family) {
-    case Family::power: return lobes::Power<double>{lobe.n}(c);
-    case Family::schlick: return lobes::Schlick<double>{lobe.n}(c);
-    case Family::schlick_modified: return lobes::SchlickModified<double>{lobe.n, lobe.s}(c);
-    case Family::gauss: return lobes::Gauss<double>{lobe.n}(c);
-    case Family::log: return lobes::Log<double>{lobe.n}(c);
-    case Family::formula: return (*lobe.formula)(c);  // a user's lobe (tests/models/)
-  }
-  return NAN;
+/// The scalar double lobe the batch is held to: its family's (families/<family>.h), or a user's
+/// formula (tests/models/).
+lobes::Lobe scalar_lobe(const LobeSpec& lobe) {
+  if (lobe.family == Family::formula) return *lobe.formula;
+  const double params[] = {lobe.n, lobe.s};
+  return families::lobe_family(lobe.family).make_lobe(std::span<const double>(params));
 }
 
 struct Check {
@@ -54,9 +55,10 @@ struct Check {
 template <class T>
 Check check_batch(const LobeSpec& lobe, Tier tier, const std::vector<T>& c, const std::vector<T>& got) {
   const ErrorBound bound = error_bound<T>(lobe.family, tier);
+  const lobes::Lobe scalar = scalar_lobe(lobe);
   Check check;
   for (std::size_t i = 0; i < c.size(); ++i) {
-    const double f = reference(lobe, double(c[i]));
+    const double f = lobes::eval(scalar, double(c[i]));
     if (std::isnan(f) || std::isnan(got[i])) {
       if (std::isnan(f) != std::isnan(got[i])) ++check.failures;
       continue;
@@ -173,11 +175,12 @@ TEST(SimdLobes, TheCheckCatchesAnErrorJustAboveTheBound) {
   for (const Family family : kFamilies)
     for (const Tier tier : kTiers) {
       const LobeSpec lobe{family, 20};
+      const lobes::Lobe scalar = scalar_lobe(lobe);
       const std::vector<double> c{0.999, 0.99, 0.97, 0.95};
       std::vector<double> got(c.size());
       const ErrorBound bound = error_bound<double>(family, tier);
       for (std::size_t i = 0; i < c.size(); ++i) {
-        const double f = reference(lobe, c[i]);
+        const double f = lobes::eval(scalar, c[i]);
         got[i] = f + 1.5 * bound.allowed(f, std::log(f));
       }
       EXPECT_EQ(check_batch(lobe, tier, c, got).failures, c.size()) << family_name(family) << " " << to_string(tier);
@@ -191,9 +194,10 @@ TEST(SimdLobes, FastTierMeetsItsShadingBoundWithRoom) {
       const std::vector<float> c = probe_cosines<float>(n, 2000);
       std::vector<float> got(c.size());
       eval_batch(LobeSpec{family, n}, Tier::fast, std::span<const float>(c), std::span<float>(got));
+      const lobes::Lobe scalar = scalar_lobe(LobeSpec{family, n});
       double worst = 0;
       for (std::size_t i = 0; i < c.size(); ++i) {
-        const double f = reference(LobeSpec{family, n}, double(c[i]));
+        const double f = lobes::eval(scalar, double(c[i]));
         if (f >= 1e-3) worst = std::max(worst, std::abs(got[i] - f) / f);
       }
       EXPECT_LE(worst, 1e-4) << family_name(family) << " n = " << n;

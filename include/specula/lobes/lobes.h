@@ -1,6 +1,6 @@
 #pragma once
-// Every lobe family, and `Lobe`: any of them chosen at run time (the registry's view).
-#include <iterator>
+// Every lobe family, and `Lobe`: any of them chosen at run time (the registry's view). Each
+// built-in family's definition, its name included, is include/specula/families/<family>.h.
 #include <span>
 #include <variant>
 
@@ -14,13 +14,6 @@ namespace specula::lobes {
 
 using Lobe = std::variant<Power<double>, Schlick<double>, SchlickModified<double>, Gauss<double>,
                           Log<double>, Formula>;
-
-/// The family's name as tables and the CLI print it.
-inline const char* family_name(const Lobe& lobe) noexcept {
-  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log", "formula"};
-  static_assert(std::size(names) == std::variant_size_v<Lobe>);
-  return names[lobe.index()];
-}
 
 /// F(c) for a run-time lobe.
 inline double eval(const Lobe& lobe, double c) noexcept {

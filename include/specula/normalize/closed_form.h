@@ -26,7 +26,7 @@ double schlick_rv(double n) noexcept;
 /// Max error: 1e-14 relative for n ∈ [1e-3, 1e9] (tests hold it to 1e-13 against mpmath).
 double log_rv(double n) noexcept;
 
-/// The closed form for this lobe and form, if one is known.
+/// The closed form for this lobe and form, if its family states one (families/<family>.h).
 std::optional<double> closed_form(const lobes::Lobe& lobe, Form form) noexcept;
 
 }  // namespace specula::normalize

@@ -9,9 +9,9 @@
 //
 //   lobe models  exact  Max Error: the lobe's exact bound (simd/lobes.h, double) + ULP = 1 for k
 //                fast   Max Error: the lobe's fast bound, relative to k (1e-4 where F ≥ 1e-3)
-//   full BRDFs   exact  Max Error: ULP = 4 (Highway's Exp, 1 ULP, for std::exp; the rest identical)
-//                fast   Max Error: 2e-6 relative (the exponential 2^y = 2^k (1 + f·P₄(f)))
-//   GGX, Lambert        no transcendental function: both tiers are the scalar arithmetic (ULP = 2)
+//   full BRDFs          Max Error: as its family states (families/<family>.h, `bounds`): with one
+//                       exponential (Ward, Cook-Torrance) ULP = 4 exact, 2e-6 relative fast;
+//                       without (GGX, Lambert) both tiers are the scalar arithmetic (ULP = 2)
 //
 // "ULP" is ε = 2⁻⁵² relative; the reference is the scalar Model::operator() at the same
 // directions. Valid range: unit N, L, V (as the scalar models); f = 0 where N·L ≤ 0 or N·V ≤ 0.
@@ -35,7 +35,8 @@ struct DirectionBatch {
 /// (bounds above). Throws InvalidArgument if the direction spans differ in length.
 void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::span<double> out);
 
-/// The bound above for `model` at `tier`, in simd/lobes.h's form (F = f/k for lobe models).
+/// The bound above for `model` at `tier`, in simd/lobes.h's form (F = f/k for lobe models):
+/// its family's, or 0 for a user's formula BRDF (bit-identical).
 ErrorBound error_bound(const Model& model, Tier tier) noexcept;
 
 }  // namespace specula::simd

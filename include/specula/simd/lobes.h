@@ -6,7 +6,7 @@
 // Two tiers per lobe:
 //   exact  within a few ulp of the scalar double lobe (include/specula/lobes/*.h)
 //   fast   cheaper logarithms, exponentials and reciprocals; 1e-4 relative where F ≥ 1e-3
-// Each (lobe, tier, lane type) states its bound below the way Highway states its math functions,
+// Each (lobe, tier, lane type) states its bound the way Highway states its math functions,
 // and tests/simd enforces exactly that bound against the scalar double lobe at the same (float)
 // inputs, over dense and random cosines, n ∈ [1e-3, 1e9] and the edge cases. "ulp" means
 // ε = std::numeric_limits<T>::epsilon() of the lane type (2⁻²³ float, 2⁻⁵² double), as a
@@ -19,21 +19,9 @@
 //
 // The |ln F| term is the amplification of an exponent's rounding (F = e^(ln F)); only the Gauss
 // lobe's exact tier in double has it, and its scalar reference has it too (lobes/gauss.h).
-// "ULP = k" below means rel = k·ε. Measured maxima over the tests' inputs are in docs/simd.md.
+// "ULP = k" means rel = k·ε. Each built-in family states its bounds, with how its kernels get
+// there, in its definition (include/specula/families/<family>.h, `bounds`); a formula's are:
 //
-//   Lobe             Tier   float                                  double
-//   power            exact  Max Error: ULP = 1                     ULP = 2
-//                           (F < 2⁻¹²⁵ float, 2⁻¹⁰²¹ double: |F̃ − F| ≤ that; F̃ = 0 there)
-//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
-//   schlick          exact  Max Error: ULP = 2                     ULP = 3
-//                    fast   Max Error: ULP = 4 (reciprocal + one Newton step)   ULP = 3 (divides)
-//   schlick-modified exact  Max Error: ULP = 5                     ULP = 6
-//                    fast   Max Error: ULP = 6                     ULP = 6
-//   gauss            exact  Max Error: ULP = 1 (F < 2⁻¹²⁵: as power)  ULP = 4 + 4·|ln F|
-//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
-//   log              exact  Max Error: ULP = 1 + 2e-14 absolute    ULP = 8 + 6e-16 absolute (the
-//                           scalar lobe's own cancellation at the cut-off c₀ is 4e-16, lobes/log.h)
-//                    fast   Max Error: 1e-4 relative where F ≥ 1e-3, 1e-7 absolute where F < 1e-3
 //   formula          exact  Max Error: ULP = 0.5 + 16·2⁻⁵² rel.   ULP = 16 + 4·|ln F| + 4 ulp absolute
 //                           (float: the double lanes' result rounded once; user-written copies of
 //                           the built-in lobes, measured, simd/formula.h: per-op bounds)
@@ -42,16 +30,11 @@
 //   (rational lobes and double gauss: relative bounds hold where F ≥ the smallest normal number
 //   of the lane type; below it |F̃ − F| ≤ that number.)
 //
+// Measured maxima over the tests' inputs are in docs/simd.md.
+//
 // Valid Range: c any value (c ≤ 0 gives 0, c > 1 counts as 1, as the scalar lobes; subnormal c
 // included), n ∈ [1e-3, 1e9], s ∈ (0, 1e3] (schlick-modified).
 // NaN: NaN in, NaN out, except gauss, which gives 0 like its scalar lobe (it tests c > 0).
-//
-// How: the exact tier of power, gauss and log works in double lanes: for double arrays
-// c^n = 2^(n log₂ c) with log₂ c as a double-double, gauss through Highway's Acos and Exp; for
-// float arrays log₂ F in double (~1e-11) and 2^(…) in float lanes, rounded once; the log lobe in
-// its t-space cases, float arrays promoted to double (src/simd/kernels-inl.h). The fast tier uses short polynomials in the lane type; for the
-// log lobe, "a log of a log": one log₂ c to ~1 ulp, then log₂(1 + t) on the fixed range t ∈ [0, 3]
-// with a degree-5 polynomial, and for n ≥ 6 no exponent extraction at all (c > c₀ ≥ √½).
 #include <concepts>
 #include <limits>
 #include <span>
@@ -134,32 +117,9 @@ constexpr ErrorBound formula_error_bound(Tier tier) noexcept {
   return {1e-4, 0, 0, 1e-3, 1e-6};
 }
 
-/// The bound stated above for lanes of type T.
+/// The bound for lanes of type T that `family` states at `tier` (its families/<family>.h), or a
+/// formula's (src/families/families.cpp).
 template <std::floating_point T>
-constexpr ErrorBound error_bound(Family family, Tier tier) noexcept {
-  constexpr double eps = std::numeric_limits<T>::epsilon();
-  constexpr bool is_float = sizeof(T) == 4;
-  constexpr double min_normal = std::numeric_limits<T>::min();
-  // c^n and 2^(…) are flushed to 0 below 2^(emin + 3) (float 2^-125, double 2^-1021).
-  constexpr double flushed = is_float ? 0x1p-125 : 0x1p-1021;
-  if (family == Family::formula) return formula_error_bound<T>(tier);
-  if (tier == Tier::fast) {
-    switch (family) {
-      case Family::schlick: return {(is_float ? 4 : 3) * eps, 0, 0, min_normal, min_normal};
-      case Family::schlick_modified: return {6 * eps, 0, 0, min_normal, min_normal};
-      default: return {1e-4, 0, 0, 1e-3, 1e-7};
-    }
-  }
-  switch (family) {
-    case Family::power: return {(is_float ? 1 : 2) * eps, 0, 0, flushed, flushed};
-    case Family::schlick: return {(is_float ? 2 : 3) * eps, 0, 0, min_normal, min_normal};
-    case Family::schlick_modified: return {(is_float ? 5 : 6) * eps, 0, 0, min_normal, min_normal};
-    case Family::gauss: return is_float ? ErrorBound{eps, 0, 0, flushed, flushed}
-                                        : ErrorBound{4 * eps, 4 * eps, 0, min_normal, min_normal};
-    case Family::log: return is_float ? ErrorBound{eps, 0, 2e-14} : ErrorBound{8 * eps, 0, 6e-16};
-    case Family::formula: break;  // formula_error_bound above
-  }
-  return {};
-}
+ErrorBound error_bound(Family family, Tier tier) noexcept;
 
 }  // namespace specula::simd
