@@ -16,6 +16,7 @@
 
 #include "specula/analysis/error.h"
 #include "specula/exceptions.h"
+#include "specula/families/families.h"
 #include "specula/models/model.h"
 #include "specula/simd/targets.h"
 
@@ -25,7 +26,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using simd::Family;
 
-constexpr Family kFamilies[] = {Family::power, Family::schlick, Family::schlick_modified, Family::gauss, Family::log};
+/// The built-in lobe families (families/families.h), in simd::Family order.
+std::span<const families::Family* const> lobe_families() {
+  return std::span(families::kFamilies).first(families::kLobeFamilyCount);
+}
 constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
 
 /// best = the smaller of best and value; NaN (nothing measured yet) gives value.
@@ -41,16 +45,12 @@ void keep(T* data) {
   asm volatile("" : : "r"(data) : "memory");
 }
 
+/// The family's scalar double lobe at n, its other parameters at their defaults.
 lobes::Lobe scalar_lobe(Family family, double n) {
-  switch (family) {
-    case Family::power: return lobes::Power<double>{n};
-    case Family::schlick: return lobes::Schlick<double>{n};
-    case Family::schlick_modified: return lobes::SchlickModified<double>{n};
-    case Family::gauss: return lobes::Gauss<double>{n};
-    case Family::log: return lobes::Log<double>{n};
-    case Family::formula: break;
-  }
-  throw InvalidArgument("bench: a formula lobe has no built-in family");
+  const families::Family& definition = families::lobe_family(family);
+  std::vector<double> values;
+  for (const auto& p : definition.params) values.push_back(p.name == "n" ? n : p.default_value);
+  return definition.make_lobe(values);
 }
 
 /// The scalar path in lane type T: the lobe struct per value, inlined (lobes::eval_batch).
@@ -314,8 +314,8 @@ Machine measure_machine(const Settings& s, tbb::task_arena& arena) {
 
 std::vector<Measurement> rows_for(bool single, const Settings& s) {
   std::vector<Measurement> rows;
-  for (const Family family : kFamilies)
-    for (const Path path : kPaths) rows.push_back({family, family_name(family), path, single});
+  for (const families::Family* family : lobe_families())
+    for (const Path path : kPaths) rows.push_back({family->simd, std::string(family->name), path, single});
   for (const std::string& id : s.user_lobes)
     for (const Path path : kPaths) rows.push_back({Family::formula, id, path, single});
   return rows;
@@ -343,11 +343,6 @@ std::vector<Measurement> measure_precision(const Settings& s, tbb::task_arena& a
 const char* to_string(Path path) noexcept {
   constexpr const char* names[] = {"scalar", "exact", "fast"};
   return names[static_cast<int>(path)];
-}
-
-const char* family_name(Family family) noexcept {
-  constexpr const char* names[] = {"power", "schlick", "schlick-modified", "gauss", "log", "formula"};
-  return names[static_cast<int>(family)];
 }
 
 Settings Settings::quick() {
@@ -413,10 +408,10 @@ Result run(const Settings& settings, const std::function<void(std::string_view)>
     result.rows.insert(result.rows.end(), rows.begin(), rows.end());
   }
   progress("lobes against cⁿ");
-  for (const Family family : kFamilies) {
-    result.lobes.emplace_back(family_name(family));
+  for (const families::Family* family : lobe_families()) {
+    result.lobes.emplace_back(family->name);
     result.error_vs_power.push_back(
-        analysis::approximation_error(scalar_lobe(family, settings.n), lobes::Power<double>{settings.n}).max_abs);
+        analysis::approximation_error(scalar_lobe(family->simd, settings.n), lobes::Power<double>{settings.n}).max_abs);
   }
   for (const auto& [id, lobe] : user_lobes<double>(settings)) {
     result.lobes.push_back(id);

@@ -49,7 +49,7 @@ struct Settings {
 /// cores / evaluations); NaN where not measured.
 struct Measurement {
   simd::Family family;  ///< Family::formula for a user lobe
-  std::string lobe;     ///< family_name(family), or the user model's id
+  std::string lobe;     ///< the family's name (families/<family>.h), or the user model's id
   Path path;
   bool single = true;  ///< float lanes (else double)
   double cache_ns = NAN, cache_threads_ns = NAN, stream_ns = NAN, stream_threads_ns = NAN;
@@ -96,6 +96,5 @@ std::string to_table(const Result& result);
 /// float), max_rel_error against the scalar double lobe, every time measured, the limits.
 std::string to_json(const Result& result);
 
-const char* family_name(simd::Family family) noexcept;
 
 }  // namespace specula::cost
