@@ -1,8 +1,8 @@
 // The model editor: a formula — a lobe in c, a lobe in u = −ln c, or a BRDF in nl, nv, nh, vh,
 // lv — with its form, normalization and parameters, sent as a definition object with a model
-// file's keys (docs/models.md). Apply has the server check it (POST /api/glsl builds its shader)
-// and then adds or updates its model card; the server's error, the key at fault and why, shows
-// next to the formula.
+// file's keys (docs/models.md). Apply — or a pause in typing — has the server check it (POST
+// /api/glsl builds its shader) and then adds or updates its model card; the server's error, the
+// key at fault and why, shows next to the formula.
 import {api} from './api.js';
 
 const $ = (id) => document.getElementById(id);
@@ -56,16 +56,28 @@ export function setupEditor(onApply) {
     $('editor-formula').setAttribute('aria-invalid', String(Boolean(e)));
   };
 
-  $('editor').addEventListener('submit', async (event) => {
-    event.preventDefault();
-    const d = definition();
+  // Apply on submit, and while typing once the edits pause: only the latest answer counts, so a
+  // slow answer to an earlier keystroke never overwrites a later one.
+  let latest = 0, pause = 0;
+  const apply = async () => {
+    const d = definition(), request = ++latest;
     try {
       await api('/api/glsl', {model: d});
+      if (request !== latest) return;
       showError(null);
       onApply(d);
     } catch (e) {
-      showError(e);
+      if (request === latest) showError(e);
     }
+  };
+  $('editor').addEventListener('submit', (event) => {
+    event.preventDefault();
+    clearTimeout(pause);
+    apply();
+  });
+  $('editor').addEventListener('input', () => {
+    clearTimeout(pause);
+    pause = setTimeout(apply, 600);
   });
   $('editor-kind').addEventListener('change', showKind);
   $('editor-add-param').addEventListener('click', () => {

@@ -193,6 +193,17 @@ TEST_F(Page, TheEditorAddsAModelCardWithItsSphere) {
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#checks tbody tr').length;"), 3);
 }
 
+TEST_F(Page, TheEditorAppliesWhenTypingPauses) {
+  open(kState);
+  const int done = renders();
+  EXPECT_EQ(state()["models"].size(), 2u);  // nothing applied before the typing
+  browser_->run("document.getElementById('editor-formula').value = '';");
+  browser_->send_keys("#editor-formula", "max(0, 1 - n*(1-c)/4)^4");  // no click on Apply
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('sphere-2') !== null;"));
+  expect_matches_cpu(2, editor_default_model(), 30, 135);
+}
+
 TEST_F(Page, TheEditorShowsTheServersErrorNextToTheFormula) {
   open(kState);
   browser_->run("document.getElementById('editor-formula').value = '';");
