@@ -145,7 +145,12 @@ std::vector<std::string> names_of(const std::vector<ParamInfo>& params) {
 /// The let steps and result of `key` in a program over `inputs` and the parameters.
 std::shared_ptr<const expr::Program> read_program(const Reader& r, const toml::table& model, std::string_view key,
                                                   std::vector<std::string> inputs, const std::vector<ParamInfo>& params) {
-  auto program = std::make_shared<expr::Program>(std::move(inputs), names_of(params));
+  std::shared_ptr<expr::Program> program;
+  try {  // a parameter named like an input of this kind (c, u; nl, nv, …)
+    program = std::make_shared<expr::Program>(std::move(inputs), names_of(params));
+  } catch (const InvalidArgument& e) {
+    r.fail(model.get("params")->source(), e.what());
+  }
   if (const toml::node* lets = model.get("let")) {
     const toml::array* list = lets->as_array();
     if (!list) r.fail(lets->source(), "key 'let' must be an array of strings \"NAME = FORMULA\"");

@@ -224,6 +224,8 @@ TEST(ModelFileErrors, EveryStructuralMistakeIsOneLine) {
       {with("[model.params.n]", "[model.params.pi]"), "m.toml:8: parameter name 'pi' is reserved"},
       {with("[model.params.n]", "[model.params.a__b]"), "m.toml:8: parameter name 'a__b' may not start with _ or contain __"},
       {with("[model.params.n]", "[model.params._b]"), "m.toml:8: parameter name '_b' may not start with _"},
+      {with("lobe = \"c^n\"", "lobe_u = \"exp(-n*u)\"") + "[model.params.u]\ndefault = 1\nmin = 0\nmax = 2\n",
+       "m.toml:8: parameter name 'u' is used twice (or is an input)"},  // a fuzz finding
       {with("[model.params.n]", "[model.params.a_b]"), "m.toml:6: column 11: lobe: unknown variable 'n'"},  // control
       {with("lobe = \"c^n\"", "brdf = \"nl\""), "m.toml:6: key 'brdf' belongs to kind = \"brdf\""},
   };
