@@ -10,18 +10,18 @@
 namespace specula::cli {
 
 void ModelOptions::add_to(CLI::App& command, bool with_form) {
-  add_optional_to(command);
+  add_optional_to(command, with_form);
   command.get_option("--model")->required();
-  if (!with_form) command.remove_option(command.get_option("--form"));
 }
 
-void ModelOptions::add_optional_to(CLI::App& command) {
+void ModelOptions::add_optional_to(CLI::App& command, bool with_form) {
   command.add_option("--model,-m", id,
                      "Model id (see `specula models`; your own with --models FILE), or inline: "
                      "'lobe: FORMULA' (in c) or 'brdf: FORMULA' (in nl, nv, nh, vh, lv); an inline "
                      "model's parameters take their values from -p (else 1)");
   command.add_option("--param,-p", params, "Parameter as NAME=VALUE, repeatable (e.g. -p n=20)");
-  command.add_option("--form", form, "rv (c = R·V) or nh (c = N·H); default: the model's own");
+  if (with_form)
+    command.add_option("--form", form, "rv (c = R·V) or nh (c = N·H); default: the model's own");
 }
 
 void ModelOptions::add_coef_to(CLI::App& command) {

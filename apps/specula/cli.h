@@ -22,7 +22,7 @@ struct ModelOptions {
 
   void add_to(CLI::App& command, bool with_form = true);
   /// The same options, --model optional (a command that can do without a model).
-  void add_optional_to(CLI::App& command);
+  void add_optional_to(CLI::App& command, bool with_form = true);
   /// Adds --coef K: override a lobe model's k (e.g. with a coefficient from `normalize`).
   void add_coef_to(CLI::App& command);
   ParamValues param_values() const;

@@ -73,10 +73,8 @@ TEST_F(Cli, FitTakesAUsersLobeAndFitsItsNormalization) {
   // An exhaustive search (every formula up to size 3, no genetic generations) is deterministic:
   // the copy's k(n) gives the built-in's front, error for error.
   const auto front = [&](const std::string& model) {
-    const std::string json = ok({"--models", kCopies, "fit", "--model", model, "--n", "1:1000@30:log",
-                                 "--max-size", "3", "--enumerate-size", "3", "--generations", "0", "--format",
-                                 "json", "--threads", "1", "--quiet"}).out;
-    return json;
+    return ok({"--models", kCopies, "fit", "--model", model, "--n", "1:1000@30:log", "--max-size", "3",
+               "--enumerate-size", "3", "--generations", "0", "--format", "json", "--threads", "1", "--quiet"}).out;
   };
   const auto train_errors = [](const std::string& json) {
     std::vector<double> errors;
