@@ -1,0 +1,88 @@
+// `specula sample` and `specula check --sampling` as a user runs them.
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "cli_fixture.h"
+#include "specula/models/model.h"
+#include "specula/sampling/sampler.h"
+
+namespace specula::testing {
+namespace {
+
+std::vector<std::vector<double>> csv_rows(const std::string& text, std::string& header) {
+  std::istringstream in(text);
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> row;
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+int count_substrings(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+TEST_F(Cli, SampleWritesTheLibrarysSamples) {
+  const Result r = ok({"sample", "--model", "ggx", "-p", "alpha=0.2", "--theta-i", "60", "--count", "3000", "--seed", "5"});
+  std::string header;
+  const auto rows = csv_rows(r.out, header);
+  EXPECT_EQ(header, "x,y,z,pdf,weight");
+  ASSERT_EQ(rows.size(), 3000u);
+  const Model model = make_model("ggx", {{"alpha", 0.2}});
+  const sampling::Sampler sampler(model);
+  const Vec3 wi{std::sin(std::numbers::pi / 3), 0, std::cos(std::numbers::pi / 3)};
+  const auto expected = sampling::draw_samples(sampler, wi, 3000, 5);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 5u);
+    EXPECT_EQ(rows[i][0], expected[i].wo.x);
+    EXPECT_EQ(rows[i][3], expected[i].pdf);
+    EXPECT_EQ(rows[i][4], expected[i].weight);
+    if (rows[i][3] > 0) {
+      EXPECT_GT(rows[i][2], 0);
+      const Vec3 wo{rows[i][0], rows[i][1], rows[i][2]};
+      EXPECT_NEAR(rows[i][4], model({0, 0, 1}, wi, wo) * wo.z / rows[i][3], 1e-12 * rows[i][4]);
+    }
+  }
+  EXPECT_NE(ok({"sample", "--model", "ggx", "--count", "3", "--seed", "6"}).out,
+            ok({"sample", "--model", "ggx", "--count", "3", "--seed", "5"}).out);
+}
+
+TEST_F(Cli, SampleWritesAtomicallyAndRefusesBadInput) {
+  ok({"sample", "--model", "log-normalized", "--count", "10", "--out", (work() / "s.csv").string()});
+  EXPECT_EQ(listing(work()), std::set<std::string>{"s.csv"});
+  bad({"sample", "--model", "ggx", "--theta-i", "90"});
+  bad({"sample", "--model", "ggx", "--count", "0"});
+  bad({"sample", "--model", "ggx", "--count", "2000000"});
+  bad({"sample", "--model", "nope"});
+  bad({"sample", "--model", "ggx", "--count", "10", "--out", (work() / "missing" / "s.csv").string()});
+  EXPECT_EQ(listing(work()), std::set<std::string>{"s.csv"});
+}
+
+TEST_F(Cli, CheckSamplingPassesAndDrawsTheHeatMap) {
+  const std::string png = (work() / "chi2.png").string();
+  const Result r = ok({"check", "--model", "log-normalized", "-p", "n=50", "--sampling", "--samples", "100000",
+                       "--theta-i", "0,45,85", "--out", png});
+  EXPECT_THAT(r.out, ::testing::HasSubstr("log lobe in t-space"));
+  EXPECT_EQ(count_substrings(r.out, "passes"), 3) << r.out;
+  EXPECT_TRUE(fs::exists(png));
+  const Result json = ok({"check", "--model", "lambert", "--sampling", "--samples", "10000", "--json"});
+  EXPECT_THAT(json.out, ::testing::HasSubstr("\"passes\": true"));
+}
+
+TEST_F(Cli, CheckSamplingRefusesBadInput) {
+  bad({"check", "--model", "ggx", "--sampling", "--theta-i", "95"});
+  bad({"check", "--model", "ggx", "--sampling", "--samples", "10"});
+  bad({"check", "--model", "ggx", "--sampling", "--bins", "1000"});
+  bad({"check", "--model", "ggx", "--sampling", "--n", "1,2"});
+  bad({"check", "--model", "ggx", "--sampling", "--theta-i", "0:89@30"});
+}
+
+}  // namespace
+}  // namespace specula::testing
