@@ -220,7 +220,7 @@ RANDOM_ALPHABET = "abcxyz0123456789.:,@-+eE \t\n\r\x1b[]{}\"'\\/%$é\udcff"
 ALIASES = {"-m": "--model", "-p": "--param", "-o": "--out", "-c": "--cos", "-t": "--theta", "-r": "--reference"}
 UNKNOWN = ["--bogus", "-Z", "--model-", "---", "extra", "--=", "-" + "x" * 100, "--help=x", "-", "--"]
 COUNTS = {"eval": 40, "normalize": 30, "albedo": 25, "check": 25, "error": 25, "fit": 30, "render": 30,
-          "compare": 15, "glsl": 20, "models": 10, "bench": 4}
+          "compare": 15, "glsl": 20, "export": 20, "models": 10, "bench": 4}
 CAPS = {"bench": 60, "serve": 5}
 
 

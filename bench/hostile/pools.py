@@ -122,6 +122,10 @@ def commands(fixtures):
                  _merge(MODEL_OPTS, {"--coef": NUMBERS,
                                      "--dialect": ["glsl330", "gles300", "webgl2", "hlsl", "", "glsl330\n"],
                                      "-o": OUTS, "--out": OUTS}), ["--shader", "--vertex"]),
+        "export": (["-m", "ggx", "--format", "cpp"],
+                   _merge(MODEL_OPTS, {"--coef": NUMBERS,
+                                       "--format": ["hlsl", "msl", "brdf", "cpp", "glsl", "", "cpp\n"],
+                                       "-o": OUTS, "--out": OUTS}), []),
         "bench": (["--quick"], {"--n": ["0", "1e-4", "1e10", "nan", "inf", "-1", "x"],
                                 "--format": ["table", "json", "x", ""]}, []),
     }

@@ -24,17 +24,17 @@ expr::Expression renamed(const expr::Expression& e, const expr::Program& program
 
 std::string glsl_param_name(std::string_view name) { return "p_" + std::string(name); }
 
-std::string program_lines(const expr::Program& program) {
+std::string program_lines(const expr::Program& program, FormulaPrinter print) {
   std::string lines;
   const std::size_t first_let = program.input_count() + program.param_count();
   for (std::size_t i = 0; i < program.lets().size(); ++i)
     lines += fmt::format("  float l_{} = {};\n", program.slot_names()[first_let + i],
-                         expr::to_glsl(renamed(program.lets()[i], program)));
-  return lines + fmt::format("  return {};\n", expr::to_glsl(renamed(program.result(), program)));
+                         print(renamed(program.lets()[i], program)));
+  return lines + fmt::format("  return {};\n", print(renamed(program.result(), program)));
 }
 
-std::string coefficient_formula(const expr::Program& coefficient) {
-  return "(" + expr::to_glsl(renamed(coefficient.result(), coefficient)) + ")";
+std::string coefficient_formula(const expr::Program& coefficient, FormulaPrinter print) {
+  return "(" + print(renamed(coefficient.result(), coefficient)) + ")";
 }
 
 }  // namespace specula::glsl

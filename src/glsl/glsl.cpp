@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "dialect.h"
 #include "formula_glsl.h"
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
@@ -20,10 +21,20 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kLn2 = std::numbers::ln2;
 
-std::string lit(double value) { return float_literal(value); }
+/// What differs between the languages before translate(): the precision of literals (float in the
+/// shading languages, double in C++), the printer of formulas, and the horizon test of C++'s lobes.
+struct Target {
+  Language language;
+
+  bool in_double() const noexcept { return language == Language::cpp; }
+  std::string literal(double value) const { return in_double() ? double_literal(value) : float_literal(value); }
+  FormulaPrinter printer() const noexcept { return in_double() ? expr::to_cpp : expr::to_glsl; }
+};
 
 /// Clenshaw's recurrence for a series of normalize::log_coef_chebyshev, unrolled.
-std::string chebyshev_function(const std::string& name, std::span<const double> c, double high) {
+std::string chebyshev_function(const Target& target, const std::string& name, std::span<const double> c,
+                               double high) {
+  const auto lit = [&](double value) { return target.literal(value); };
   std::string body = fmt::format(
       "// Clenshaw's recurrence for sum_k c_k T_k(t), t = 2x/{} - 1 (series by scripts/make_log_coef_fit.py).\n"
       "float {}(float x) {{\n  float t = 2.0 * x / {} - 1.0;\n  float b1 = 0.0, b2 = 0.0, b0;\n",
@@ -34,18 +45,18 @@ std::string chebyshev_function(const std::string& name, std::span<const double> 
   return body;
 }
 
-/// What the shader files may name as ${name}: constants and series from C++, as float literals.
-const Placeholders& computed_values() {
+/// What the shader files may name as ${name}: constants and series from C++, as literals of the
+/// target's precision.
+Placeholders computed_values(const Target& target) {
   namespace cheb = normalize::log_coef_chebyshev;
-  static const Placeholders values{
-      {"pi", lit(kPi)},
-      {"1/pi", lit(1 / kPi)},
-      {"2 ln2", lit(2 * kLn2)},
-      {"1/(2 ln2)", lit(1 / (2 * kLn2))},
-      {"1/(2 pi ln2)", lit(1 / (2 * kPi * kLn2))},
-      {"log_coef_j_series", chebyshev_function("specula_log_coef_j", cheb::kJ, cheb::kJHigh)},
-      {"log_coef_k_series", chebyshev_function("specula_log_coef_k", cheb::kK, cheb::kKHigh)}};
-  return values;
+  const auto lit = [&](double value) { return target.literal(value); };
+  return {{"pi", lit(kPi)},
+          {"1/pi", lit(1 / kPi)},
+          {"2 ln2", lit(2 * kLn2)},
+          {"1/(2 ln2)", lit(1 / (2 * kLn2))},
+          {"1/(2 pi ln2)", lit(1 / (2 * kPi * kLn2))},
+          {"log_coef_j_series", chebyshev_function(target, "specula_log_coef_j", cheb::kJ, cheb::kJHigh)},
+          {"log_coef_k_series", chebyshev_function(target, "specula_log_coef_k", cheb::kK, cheb::kKHigh)}};
 }
 
 /// The name of the function `float NAME(float n)` that a coefficient file defines last.
@@ -92,11 +103,6 @@ std::string add_coef(ShaderSource& src, const Model& model) {
   return coefficient_function(path);
 }
 
-/// A parameter's name in GLSL: its own for built-in models, p_NAME for user models.
-std::string param_name(const ModelInfo& info, const ParamInfo& p) {
-  return info.is_builtin() ? p.name : glsl_param_name(p.name);
-}
-
 /// The parameter list "float n, float s" of a model's entry function.
 std::string parameter_list(const ModelInfo& info) {
   std::string list;
@@ -112,7 +118,7 @@ std::string parameter_names(const ModelInfo& info) {
 
 /// A user lobe: `float specula_<id>_lobe(float c, its parameters)` from its formula (in c, or in
 /// u = -log c); returns the call of it at `cosine`.
-std::string add_formula_lobe(ShaderSource& src, const Model& model, std::string_view cosine) {
+std::string add_formula_lobe(ShaderSource& src, const Target& target, const Model& model, std::string_view cosine) {
   const auto& definition = std::get<lobes::Formula>(model.lobe()).definition();
   const expr::Program& program = definition.in_cos ? *definition.in_cos : *definition.in_log_cos;
   const std::string name = entry_name(model) + "_lobe";
@@ -120,33 +126,47 @@ std::string add_formula_lobe(ShaderSource& src, const Model& model, std::string_
                             "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n{}{}}}",
                             model.info().name, model.info().origin, model.info().source, name,
                             parameter_list(model.info()), program.reads(1) ? "  float u = -log(c);\n" : "",
-                            program_lines(program)));
+                            program_lines(program, target.printer())));
   const std::string names = parameter_names(model.info());
   return fmt::format("{}({}(N, L, V){}{})", name, cosine, names.empty() ? "" : ", ", names);
 }
 
+/// The inputs of a user BRDF after N.L and N.V (FormulaBrdf::kInputs), those its formula reads.
+std::string brdf_inputs(const expr::Program& program) {
+  const bool nh = program.reads(2), vh = program.reads(3), lv = program.reads(4);
+  std::string lines = nh || vh ? "  vec3 H = normalize(L + V);\n" : "";
+  if (nh) lines += "  float nh = dot(N, H);\n";
+  if (vh) lines += "  float vh = dot(V, H);\n";
+  if (lv) lines += "  float lv = dot(L, V);\n";
+  return lines;
+}
+
 /// A user BRDF's entry function, from its formula.
-void add_formula_brdf(ShaderSource& src, const Model& model) {
+void add_formula_brdf(ShaderSource& src, const Target& target, const Model& model) {
+  const expr::Program& program = *std::get<FormulaBrdf>(model.brdf()).program;
   src.add(entry_name(model),
           fmt::format("// {}: a user-defined BRDF ({}), f = {}. Source: {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
-                      "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n  vec3 H = normalize(L + V);\n"
-                      "  float nh = dot(N, H), vh = dot(V, H), lv = dot(L, V);\n{}}}",
+                      "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n{}{}}}",
                       model.info().name, model.info().origin, model.info().summary, model.info().source,
-                      entry_name(model), parameter_list(model.info()),
-                      program_lines(*std::get<FormulaBrdf>(model.brdf()).program)));
+                      entry_name(model), parameter_list(model.info()), brdf_inputs(program),
+                      program_lines(program, target.printer())));
 }
 
-/// k as the model defines it, or the literal of an override (Model::with_coef).
-std::string coefficient_expression(ShaderSource& src, const Model& model) {
+/// Whether the lobe model's k is not its own (Model::with_coef).
+bool coef_overridden(const Model& model) {
   ParamValues values;
   for (std::size_t i = 0; i < model.params().size(); ++i)
     values[std::string(model.info().params[i].name)] = model.params()[i];
-  const double own_k = make_model(model.shared_info(), values, model.form()).coef();
-  if (model.coef() != own_k) return lit(model.coef());
+  return model.coef() != make_model(model.shared_info(), values, model.form()).coef();
+}
+
+/// k as the model defines it, or the literal of an override (Model::with_coef).
+std::string coefficient_expression(ShaderSource& src, const Target& target, const Model& model) {
+  if (coef_overridden(model)) return target.literal(model.coef());
   if (std::holds_alternative<lobes::Formula>(model.lobe())) {
-    if (model.info().coef_program) return coefficient_formula(*model.info().coef_program);
-    return model.info().normalization == Normalization::none ? "" : lit(model.coef());  // quadrature: baked
+    if (model.info().coef_program) return coefficient_formula(*model.info().coef_program, target.printer());
+    return model.info().normalization == Normalization::none ? "" : target.literal(model.coef());  // quadrature: baked
   }
   const std::string function = add_coef(src, model);
   if (function.empty() && model.info().normalization != Normalization::none)
@@ -154,32 +174,34 @@ std::string coefficient_expression(ShaderSource& src, const Model& model) {
   return function.empty() ? "" : function + "(n)";
 }
 
-/// f = k F(c): the form's cosine, the lobe (its family's file, or a user's formula) and k.
-void add_lobe_entry(ShaderSource& src, const Model& model) {
+/// f = k F(c): the form's cosine, the lobe (its family's file, or a user's formula) and k. In C++,
+/// 0 below the horizon (N.L <= 0 or N.V <= 0), as Model is.
+void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model) {
   const FormShader form = form_shader(model.form());
   const families::Family* family = families::family_of(model.info());
   src.add_file(form.file);
   if (family) src.add_file(family->glsl.file);
-  const std::string k = coefficient_expression(src, model);
+  const std::string k = coefficient_expression(src, target, model);
   const std::string lobe_value =
       family ? fmt::format("{}({}(N, L, V), n{})", family->glsl.function, form.function, family->glsl.extra_args)
-             : add_formula_lobe(src, model, form.function);
+             : add_formula_lobe(src, target, model, form.function);
   src.add(entry_name(model),
           fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; {}.\n"
-                      "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  return {};\n}}",
+                      "float {}(vec3 N, vec3 L, vec3 V{}) {{\n{}  return {};\n}}",
                       model.info().name, model.info().summary, to_string(model.form()), model.info().source,
                       model.info().is_builtin() ? fmt::format("docs/math.md 2 `{}`", model.id()) : model.info().origin,
                       entry_name(model), parameter_list(model.info()),
+                      target.in_double() ? "  if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return 0.0;\n" : "",
                       k.empty() ? lobe_value : k + " * " + lobe_value));
 }
 
 /// The entry's arguments from specula_brdf's vec4: the first four parameters; any beyond are
 /// the model's values, baked in.
-std::string entry_arguments(const Model& model) {
+std::string entry_arguments(const Target& target, const Model& model) {
   constexpr const char* components[] = {"x", "y", "z", "w"};
   std::string args;
   for (std::size_t i = 0; i < model.params().size(); ++i)
-    args += i < 4 ? fmt::format(", params.{}", components[i]) : ", " + lit(model.params()[i]);
+    args += i < 4 ? fmt::format(", params.{}", components[i]) : ", " + target.literal(model.params()[i]);
   return args;
 }
 
@@ -238,19 +260,43 @@ std::string float_literal(double value) {
   return text;
 }
 
-std::string model_glsl(const Model& model) {
-  ShaderSource src(computed_values());
+std::string double_literal(double value) {
+  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("no C++ literal for {}", value));
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string param_name(const ModelInfo& info, const ParamInfo& p) {
+  return info.is_builtin() ? p.name : glsl_param_name(p.name);
+}
+
+bool coef_is_baked(const Model& model) {
+  if (!model.is_lobe()) return false;
+  if (coef_overridden(model)) return true;
+  const bool quadrature_k = std::holds_alternative<lobes::Formula>(model.lobe()) && !model.info().coef_program &&
+                            model.info().normalization != Normalization::none;
+  return quadrature_k;
+}
+
+std::string model_glsl(const Model& model) { return model_source(model, Language::glsl); }
+
+std::string model_source(const Model& model, Language language) {
+  const Target target{language};
+  ShaderSource src(computed_values(target));
   if (model.is_lobe())
-    add_lobe_entry(src, model);
+    add_lobe_entry(src, target, model);
   else if (const families::ModelDefinition* builtin = builtin_definition(model))
     src.add_file(builtin->glsl_file);
   else
-    add_formula_brdf(src, model);
-  src.add("specula_brdf",
-          fmt::format("// The entry point renderers call: {} with params = ({}).\n"
-                      "float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params) {{\n  return {}(N, L, V{});\n}}",
-                      model.id(), parameter_names(model.info()), entry_name(model), entry_arguments(model)));
-  return ascii(src.take());
+    add_formula_brdf(src, target, model);
+  if (language != Language::cpp)
+    src.add("specula_brdf",
+            fmt::format("// The entry point renderers call: {} with params = ({}).\n"
+                        "float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params) {{\n  return {}(N, L, V{});\n}}",
+                        model.id(), parameter_names(model.info()), entry_name(model), entry_arguments(target, model)));
+  const std::string text = translate(ascii(src.take()), language);
+  return language == Language::cpp ? std::string(cpp_support()) + text : text;
 }
 
 std::array<float, 4> model_params(const Model& model) {

@@ -890,12 +890,37 @@ TEST_F(Cli, HelpEverywhereHasAnExample) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"--help"}, {"models", "--help"}, {"eval", "--help"},
         {"normalize", "--help"}, {"report", "--help"}, {"albedo", "--help"},
-        {"check", "--help"}, {"error", "--help"}, {"fit", "--help"}}) {
+        {"check", "--help"}, {"error", "--help"}, {"fit", "--help"}, {"export", "--help"}}) {
     const Result r = run(args);
     const std::string what = fmt::format("specula {}", fmt::join(args, " "));
     EXPECT_EQ(r.code, 0) << what << "\n" << r;
     EXPECT_THAT(r.out, HasSubstr("Example")) << what;
   }
+}
+
+// ---- export ---------------------------------------------------------------------------------
+
+TEST_F(Cli, ExportWritesEachFormat) {
+  EXPECT_THAT(ok({"export", "--model", "ggx", "-p", "alpha=0.2", "--format", "hlsl"}).out,
+              HasSubstr("float specula_ggx(float3 N, float3 L, float3 V, float alpha, float f0)"));
+  EXPECT_THAT(ok({"export", "--model", "ggx", "--format", "msl"}).out, HasSubstr("metal::normalize(L + V)"));
+  EXPECT_THAT(ok({"export", "--model", "log-normalized", "-p", "n=50", "--format", "brdf"}).out,
+              HasSubstr("::begin parameters\nfloat n 1 1000 50\n::end parameters\n"));
+  EXPECT_THAT(ok({"export", "--model", "lobe: c^n", "-p", "n=8", "--coef", "3.5", "--format", "cpp"}).out,
+              HasSubstr("return 3.5 * specula_lobe_c_n_lobe(specula_cos_rv(N, L, V), p_n);"));
+  const fs::path file = work() / "log.brdf";
+  EXPECT_THAT(ok({"export", "--model", "log", "--format", "brdf", "--out", file.string()}).out, IsEmpty());
+  EXPECT_EQ(read_file(file).rfind("analytic\n", 0), 0u);
+  EXPECT_THAT(listing(work()), ElementsAre("log.brdf"));
+}
+
+TEST_F(Cli, ExportBadInput) {
+  EXPECT_THAT(bad({"export", "--model", "ggx", "--format", "spirv"}).err, HasSubstr("unknown export format 'spirv'"));
+  bad({"export", "--model", "ggx"});
+  bad({"export", "--model", "nope", "--format", "cpp"});
+  bad({"export", "--model", "ggx", "--form", "nh", "--format", "cpp"});
+  bad({"export", "--model", "log", "-p", "n=0", "--format", "hlsl"});
+  EXPECT_THAT(listing(work()), IsEmpty());
 }
 
 // ---- files ----------------------------------------------------------------------------------

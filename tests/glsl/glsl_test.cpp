@@ -123,10 +123,13 @@ TEST(Glsl, UserModelsCarryTheirFormulasCoefficientsAndParameters) {
             std::string::npos) << phong;
   const Model log = make_model("my-log", {{"n", 20}});
   EXPECT_NE(model_glsl(log).find("return " + float_literal(log.coef()) + " * specula_my_log_lobe("), std::string::npos);
-  // Lets become locals; the BRDF's inputs are computed once.
+  // Lets become locals; the BRDF's inputs are computed once, those its formula reads.
   const std::string ggx = model_glsl(make_model("my-ggx"));
   EXPECT_NE(ggx.find("  float l_D = "), std::string::npos) << ggx;
-  EXPECT_NE(ggx.find("float nh = dot(N, H), vh = dot(V, H), lv = dot(L, V);"), std::string::npos);
+  EXPECT_NE(ggx.find("  vec3 H = normalize(L + V);\n  float nh = dot(N, H);\n  float vh = dot(V, H);\n"), std::string::npos);
+  EXPECT_EQ(ggx.find("float lv"), std::string::npos);
+  const std::string lambert = model_glsl(make_model("brdf: rho/pi"));
+  EXPECT_EQ(lambert.find("vec3 H"), std::string::npos) << lambert;
   // Parameters beyond the vec4's four are baked into specula_brdf.
   const std::string six = model_glsl(make_model("six-parameters", {{"e2", 0.75}}));
   EXPECT_NE(six.find("return specula_six_parameters(N, L, V, params.x, params.y, params.z, params.w, 1.0, 0.75);"),

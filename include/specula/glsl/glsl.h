@@ -37,8 +37,31 @@ std::string version_header(Dialect dialect);
 /// by its closed form, or by a 24-term series in 1 − n where that form cancels (|1 − n| ≤ ½).
 std::string model_glsl(const Model& model);
 
+/// The languages model_source writes: GLSL, HLSL (Shader Model 4 and later), the Metal Shading
+/// Language, and C++ (double; for exports, include/specula/exports/exports.h).
+enum class Language { glsl, hlsl, msl, cpp };
+
+/// model_glsl's functions in `language`, rewritten word for word from the same GLSL (same names,
+/// comments, arithmetic and normalization): HLSL and Metal in float, specula_brdf's vec4 a float4,
+/// global constants `static const` (HLSL) and `constant` (Metal), Metal's built-ins as metal::NAME.
+/// C++ in double: literals and the log lobe's series in double (its k within 1e-9 of the closed
+/// form), formulas as expr::to_cpp prints them, every function inline, over the vector type Vec3
+/// (and Vec2) and GLSL's built-ins that the text begins with (needs <cmath>; meant to go in a
+/// namespace of the caller's); no specula_brdf, and lobe models return 0 below the horizon
+/// (N.L <= 0 or N.V <= 0), as Model does. Language::glsl gives model_glsl(model).
+std::string model_source(const Model& model, Language language);
+
 /// The model's parameter values in the layout specula_brdf's `params` expects (unused: 0).
 std::array<float, 4> model_params(const Model& model);
+
+/// A parameter's name in the emitted code: its own for built-in models, p_NAME for user models
+/// (so that no user name clashes with a keyword or built-in function).
+std::string param_name(const ModelInfo& info, const ParamInfo& p);
+
+/// Whether the model's GLSL has k as a literal — a coefficient given in place of the model's own
+/// (Model::with_coef), or a user lobe's k by quadrature — rather than computing it from the
+/// parameters: such a k holds at the model's parameter values only.
+bool coef_is_baked(const Model& model);
 
 /// "specula_<id>", every run of characters other than letters and digits as one "_": the name
 /// of the model's own entry function.
@@ -47,5 +70,8 @@ std::string entry_name(const Model& model);
 /// A float as a GLSL literal that reads back to the same float ("2.0", "0.197253996",
 /// "2.02299907e-09").
 std::string float_literal(double value);
+
+/// A double as a C++ literal that reads back to the same double ("2.0", "0.19725399658349416").
+std::string double_literal(double value);
 
 }  // namespace specula::glsl
