@@ -2,10 +2,14 @@
 // Exit 0 when every property holds for every parameter value, 1 when one fails.
 #include <algorithm>
 #include <fmt/format.h>
+#include <iostream>
 
 #include "cli.h"
 #include "specula/analysis/check.h"
 #include "specula/exceptions.h"
+#include "specula/render/heatmap.h"
+#include "specula/render/image_io.h"
+#include "specula/sampling/check.h"
 
 namespace specula::cli {
 namespace {
@@ -14,6 +18,8 @@ namespace {
 // two evaluations; Ctrl-C stops any of them.
 constexpr std::size_t kMaxCases = 1000, kMaxGrazing = 100;
 constexpr int kMaxPairs = 10'000'000;
+// --sampling: at most 20 angles of up to 1e8 samples (about 10 s per 1e7 samples and angle).
+constexpr std::size_t kMaxSamplingAngles = 20;
 
 struct CheckCliOptions {
   ModelOptions model;
@@ -23,6 +29,9 @@ struct CheckCliOptions {
   std::string grazing = "89.5,89.9";
   bool json = false;
   std::string out;
+  bool sampling = false;
+  std::string sampling_theta = "0,30,60,80,89";
+  sampling::SamplingCheckOptions sampling_options;
 };
 
 /// The parameter to sweep and its values: --n RANGE is --sweep n=RANGE.
@@ -71,6 +80,54 @@ std::string text_report(const std::vector<queries::CheckCase>& cases, double las
   return out;
 }
 
+std::string sampling_text(const Model& m, const sampling::SamplingCheck& c) {
+  std::string out = fmt::format("{}\n  sampled by {}", describe(m), c.method);
+  if (c.table_error > 0) out += fmt::format(" (table's L1 error {:.2g})", c.table_error);
+  out += fmt::format("\n  {:>6} {:>9} {:>10} {:>5} {:>9} {:>8} {:>10} {:>12} {:>10} {:>12} {:>9}  {}\n", "θ_i", "samples",
+                     "χ²", "dof", "p", "α_θ", "∫pdf", "mean weight", "± se", "albedo", "max wt", "verdict");
+  for (const sampling::AngleCheck& a : c.angles) {
+    std::string problems;
+    if (!a.chi2_passes()) problems += " χ²";
+    if (!a.albedo_agrees()) problems += fmt::format(" mean weight ≠ albedo ({:.2f} se)", std::abs(a.mean_weight - a.albedo) / a.standard_error);
+    if (!a.pdf_normalized()) problems += " ∫pdf > 1";
+    if (a.outside) problems += fmt::format(" {} samples outside the hemisphere or with a bad pdf", a.outside);
+    if (a.weight_mismatches) problems += fmt::format(" {} weights ≠ f·cos/pdf", a.weight_mismatches);
+    if (a.uncovered_nodes) problems += fmt::format(" pdf = 0 where f > 0 at {} points", a.uncovered_nodes);
+    out += fmt::format("  {:>5}° {:>9} {:>10.4g} {:>5} {:>9.3g} {:>8.2g} {:>10.7f} {:>12.7f} {:>10.2g} {:>12.7f} {:>9.3g}  {}\n",
+                       a.theta_deg, a.valid_samples, a.chi2, a.dof, a.p_value, a.alpha, a.pdf_integral, a.mean_weight,
+                       a.standard_error, a.albedo, a.max_weight, problems.empty() ? "passes" : "FAILS:" + problems);
+  }
+  return out;
+}
+
+std::string sampling_json(const Model& m, const sampling::SamplingCheck& c) {
+  std::string out = fmt::format("{{\"model\": \"{}\", \"method\": \"{}\", \"table_error\": {}, \"passes\": {}, \"angles\": [",
+                                describe(m), c.method, c.table_error, c.passes());
+  for (std::size_t i = 0; i < c.angles.size(); ++i) {
+    const sampling::AngleCheck& a = c.angles[i];
+    out += fmt::format("{}\n  {{\"theta_deg\": {}, \"samples\": {}, \"chi2\": {}, \"dof\": {}, \"p_value\": {}, "
+                       "\"alpha\": {}, \"pdf_integral\": {}, \"mean_weight\": {}, \"standard_error\": {}, "
+                       "\"albedo\": {}, \"max_weight\": {}, \"outside\": {}, \"weight_mismatches\": {}, "
+                       "\"uncovered\": {}, \"in_empty_cells\": {}, \"passes\": {}}}",
+                       i ? "," : "", a.theta_deg, a.valid_samples, a.chi2, a.dof, a.p_value, a.alpha, a.pdf_integral,
+                       a.mean_weight, a.standard_error, a.albedo, a.max_weight, a.outside, a.weight_mismatches,
+                       a.uncovered_nodes, a.unexpected_samples, a.passes());
+  }
+  return out + "\n]}\n";
+}
+
+void run_sampling_check(CheckCliOptions& o) {
+  if (!o.n.empty() || !o.sweep.empty())
+    throw InvalidArgument("--sampling checks one parameter set: give the parameters with -p NAME=VALUE");
+  o.sampling_options.theta_deg = option_values("--theta-i", o.sampling_theta, kMaxSamplingAngles);
+  o.sampling_options.seed = o.check.seed;
+  const Model model = o.model.make();
+  const sampling::SamplingCheck c = sampling::check_sampling(sampling::Sampler(model), o.sampling_options);
+  std::cout << (o.json ? sampling_json(model, c) : sampling_text(model, c)) << std::flush;
+  if (!o.out.empty()) render::write_png(o.out, render::sampling_heatmap(c));
+  if (!c.passes()) throw CheckFailed();
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app) {
@@ -91,16 +148,28 @@ void add_check_command(CLI::App& app) {
                   "divergence at grazing (seconds per angle for Cook-Torrance)")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
-  cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout");
+  cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout; with --sampling, the heat map (PNG)");
+  cmd->add_flag("--sampling", o->sampling,
+                "Check the model's importance sampler instead: χ² goodness of fit, weights, coverage, ∫pdf ≤ 1 and "
+                "the mean weight against the albedo, at each --theta-i (docs/sampling.md)");
+  cmd->add_option("--theta-i", o->sampling_theta, "--sampling: incidence angles in degrees, [0, 90), at most 20")
+      ->capture_default_str();
+  cmd->add_option("--samples", o->sampling_options.samples, "--sampling: samples per angle, [1e3, 1e8]")
+      ->capture_default_str()->check(CLI::Range(std::size_t{1000}, std::size_t{100'000'000}));
+  cmd->add_option("--bins", o->sampling_options.cos_bins,
+                  "--sampling: grid cells in cos θ_o (φ_o has twice as many), [4, 128]")
+      ->capture_default_str()->check(CLI::Range(4, 128));
   cmd->footer(
       "For each parameter value: the albedo ρ(θ_i) at normal incidence and its maximum over θ_i\n"
       "(energy conservation: max ρ ≤ 1), reciprocity f(l,v) = f(v,l) and f ≥ 0 over seeded random\n"
       "direction pairs. Exit 0 when all hold, 1 when one fails, 2 on usage errors. Examples:\n"
       "  specula check --model log-normalized --n 1,20,1000\n"
       "  specula check --model cook-torrance-1982            # reflects ~4× what it receives\n"
+      "  specula check --model ggx -p alpha=0.1 --sampling -o ggx-chi2.png   # the sampler, by χ²\n"
       "  specula check --model log-normalized -p n=20 --form nh   # k made for rv breaks in nh\n"
       "  specula check --model log -p n=20 --form nh --coef $(specula normalize --model log --form nh --n 20 | tail -1 | cut -d, -f2)");
   cmd->callback([o] {
+    if (o->sampling) return run_sampling_check(*o);
     o->check.grazing_deg = option_values("--grazing", o->grazing, kMaxGrazing);
     auto [sweep, values] = sweep_of(*o);
     const auto cases = queries::check_cases({o->model.spec(), sweep, values, o->check}, queries::Spelling::option);

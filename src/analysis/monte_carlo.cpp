@@ -17,26 +17,16 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kLobeShare = 0.8;
 
-/// An orthonormal frame around the unit vector w.
-struct Frame {
-  Vec3 t, b, w;
-  explicit Frame(const Vec3& axis) : w(axis) {
-    const Vec3 a = std::abs(w.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    t = normalized(cross(a, w));
-    b = cross(w, t);
-  }
-  Vec3 to_world(double cos_theta, double phi) const {
-    const double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-    return t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + w * cos_theta;
-  }
-};
-
 /// pdf (m + 1)/(2π) cos^m θ about an axis; m from the lobe's width: cos^m = ½ at the width.
 struct PowerLobe {
   double m;
   double pdf(double cos_theta) const { return cos_theta > 0 ? (m + 1) / (2 * kPi) * std::pow(cos_theta, m) : 0; }
   double sample_cos(double xi) const { return std::pow(xi, 1 / (m + 1)); }
 };
+
+Vec3 to_world(const Frame& frame, double cos_theta, double phi) {
+  return frame.to_world(cos_theta, std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta)), phi);
+}
 
 PowerLobe matched_power_lobe(const Model& model) {
   const double width = std::min(angular_width(model), 1.4);
@@ -121,10 +111,10 @@ MonteCarloEstimate albedo_monte_carlo(const Model& model, double theta_i, std::s
     const double choice = uniform(rng), xi1 = uniform(rng), xi2 = uniform(rng);
     Vec3 v;
     if (choice < kLobeShare) {
-      const Vec3 axis_dir = lobe_frame.to_world(lobe.sample_cos(xi1), 2 * kPi * xi2);
+      const Vec3 axis_dir = to_world(lobe_frame, lobe.sample_cos(xi1), 2 * kPi * xi2);
       v = around_r ? axis_dir : reflect(l, axis_dir);
     } else {
-      v = normal_frame.to_world(std::sqrt(xi1), 2 * kPi * xi2);  // cosine-weighted
+      v = to_world(normal_frame, std::sqrt(xi1), 2 * kPi * xi2);  // cosine-weighted
     }
     const double pdf = v.z > 0 ? kLobeShare * lobe_pdf(v) + (1 - kLobeShare) * v.z / kPi : 0;
     block.add(v, pdf);

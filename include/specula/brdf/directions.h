@@ -23,6 +23,21 @@ Vec3T<T> from_spherical(T theta, T phi) noexcept {
   return {s * std::cos(phi), s * std::sin(phi), std::cos(theta)};
 }
 
+/// An orthonormal frame (t, b, w) around the unit vector w.
+struct Frame {
+  Vec3 t, b, w;
+
+  explicit Frame(const Vec3& axis) noexcept : w(axis) {
+    const Vec3 helper = std::abs(w.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    t = normalized(cross(helper, w));
+    b = cross(w, t);
+  }
+  /// The direction at polar angle (cos θ, sin θ) from w and azimuth φ.
+  Vec3 to_world(double cos_theta, double sin_theta, double phi) const noexcept {
+    return t * (sin_theta * std::cos(phi)) + b * (sin_theta * std::sin(phi)) + w * cos_theta;
+  }
+};
+
 template <std::floating_point T>
 constexpr T radians(T degrees) noexcept {
   return degrees * (std::numbers::pi_v<T> / T(180));

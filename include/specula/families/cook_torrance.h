@@ -32,6 +32,7 @@ inline constexpr Family kCookTorrance{
     .params = kCookTorranceParams,
     .models = kCookTorranceModels,
     .bounds = kOneExponentialBounds,  // families/ward.h
+    .sampling = sampling::Method::beckmann,
 };
 
 }  // namespace specula::families

@@ -14,6 +14,7 @@
 //   stated error bounds       bounds                 simd::error_bound, tests/simd
 //   GLSL                      glsl, models[].glsl_file   glsl::model_glsl (CPU and GL renderers)
 //   reference values          reference, models[].reference   tests/families (tests/reference/)
+//   importance sampling       sampling               sampling::Sampler (src/sampling/sampler.cpp)
 //
 // families/families.h lists every family; tests/families checks that each registered built-in
 // model has every part and that each part works.
@@ -22,6 +23,7 @@
 #include <string_view>
 
 #include "specula/models/model.h"
+#include "specula/sampling/method.h"
 #include "specula/simd/lobes.h"
 
 namespace specula::families {
@@ -121,6 +123,9 @@ struct Family {
   std::span<const ParamDefinition> params;
   std::span<const ModelDefinition> models;
   StatedBounds bounds;
+  /// How its models are importance-sampled; microfacet families take the roughness as their first
+  /// parameter, lobe families the exponent n.
+  sampling::Method sampling = sampling::Method::tabulated;
   // Lobe families only:
   lobes::Lobe (*make_lobe)(Values params) = nullptr;  ///< the scalar lobe at `params`
   /// The SIMD kernels' family: its kernels in src/simd/kernels-inl.h, chosen in src/simd/lobes.cpp.

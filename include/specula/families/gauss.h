@@ -27,6 +27,7 @@ inline constexpr Family kGauss{
                .exact_double = {4 * kDoubleUlp, 4 * kDoubleUlp, 0, kDoubleMinNormal, kDoubleMinNormal},
                .fast_float = kFastTranscendental,
                .fast_double = kFastTranscendental},
+    .sampling = sampling::Method::tabulated,
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Gauss<double>{p[0]}; },
     .simd = simd::Family::gauss,  // GaussExact, GaussExactFloat, GaussFast
     .glsl = {"lobes/gauss.glsl", "specula_gauss_lobe", ""},

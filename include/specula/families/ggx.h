@@ -23,6 +23,7 @@ inline constexpr Family kGgx{
     .models = kGgxModels,
     // No transcendental function: both tiers are the scalar arithmetic (src/simd/brdf.cpp).
     .bounds = double_only(ulps(2, kDoubleUlp, 0), ulps(2, kDoubleUlp, 0)),
+    .sampling = sampling::Method::ggx_visible_normals,
 };
 
 }  // namespace specula::families

@@ -22,6 +22,7 @@ inline constexpr Family kLambert{
     .models = kLambertModels,
     // No transcendental function: both tiers are the scalar arithmetic (src/simd/brdf.cpp).
     .bounds = double_only(ulps(2, kDoubleUlp, 0), ulps(2, kDoubleUlp, 0)),
+    .sampling = sampling::Method::cosine,
 };
 
 }  // namespace specula::families

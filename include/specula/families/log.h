@@ -40,6 +40,7 @@ inline constexpr Family kLog{
                .exact_double = {8 * kDoubleUlp, 0, 6e-16, 0, 0},
                .fast_float = kFastTranscendental,
                .fast_double = kFastTranscendental},
+    .sampling = sampling::Method::log_t_space,
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Log<double>{p[0]}; },
     .simd = simd::Family::log,  // LogExact, LogFast
     .glsl = {"lobes/log.glsl", "specula_log_lobe", ""},

@@ -51,6 +51,7 @@ inline constexpr Family kPower{
                .exact_double = ulps(2, kDoubleUlp, kDoubleFlushed),
                .fast_float = kFastTranscendental,
                .fast_double = kFastTranscendental},
+    .sampling = sampling::Method::power_cosine,
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Power<double>{p[0]}; },
     .simd = simd::Family::power,  // PowerExact, PowerExactFloat, PowerFast
     .glsl = {"lobes/power.glsl", "specula_power_lobe", ""},

@@ -30,6 +30,7 @@ inline constexpr Family kSchlick{
                .exact_double = ulps(3, kDoubleUlp, kDoubleMinNormal),
                .fast_float = ulps(4, kFloatUlp, kFloatMinNormal),
                .fast_double = ulps(3, kDoubleUlp, kDoubleMinNormal)},
+    .sampling = sampling::Method::tabulated,
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Schlick<double>{p[0]}; },
     .simd = simd::Family::schlick,  // Schlick<D, fast>
     .glsl = {"lobes/schlick.glsl", "specula_schlick_lobe", ""},

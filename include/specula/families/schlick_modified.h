@@ -26,6 +26,7 @@ inline constexpr Family kSchlickModified{
                .exact_double = ulps(6, kDoubleUlp, kDoubleMinNormal),
                .fast_float = ulps(6, kFloatUlp, kFloatMinNormal),
                .fast_double = ulps(6, kDoubleUlp, kDoubleMinNormal)},
+    .sampling = sampling::Method::tabulated,
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::SchlickModified<double>{p[0], p[1]}; },
     .simd = simd::Family::schlick_modified,  // SchlickModified<D, fast>
     .glsl = {"lobes/schlick-modified.glsl", "specula_schlick_modified_lobe", ", s"},

@@ -40,6 +40,7 @@ inline constexpr Family kWard{
     .params = kWardParams,
     .models = kWardModels,
     .bounds = kOneExponentialBounds,
+    .sampling = sampling::Method::beckmann,
 };
 
 }  // namespace specula::families

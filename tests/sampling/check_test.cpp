@@ -1,0 +1,186 @@
+// `check --sampling` passes every model's sampler, built-in and user-written, at the default
+// parameters and at narrow and broad ones — and fails samplers broken on purpose, each in the way
+// one of its checks is there to catch.
+#include <gtest/gtest.h>
+#include <numbers>
+
+#include "specula/exceptions.h"
+#include "model_ids.h"
+#include "specula/sampling/check.h"
+
+namespace specula::sampling {
+namespace {
+
+SamplingCheckOptions test_options() {
+  SamplingCheckOptions o;
+  o.samples = 250'000;  // the CLI's default is 1e6; a quarter keeps the sanitizer build quick
+  return o;
+}
+
+std::string failures(const SamplingCheck& c) {
+  std::string text = c.method + ":";
+  for (const AngleCheck& a : c.angles)
+    if (!a.passes())
+      text += " θ_i=" + std::to_string(a.theta_deg) + " (p=" + std::to_string(a.p_value) +
+              ", mean " + std::to_string(a.mean_weight) + " vs " + std::to_string(a.albedo) + " ± " +
+              std::to_string(a.standard_error) + ", ∫pdf " + std::to_string(a.pdf_integral) + ", outside " +
+              std::to_string(a.outside) + ", uncovered " + std::to_string(a.uncovered_nodes) + ")";
+  return text;
+}
+
+class EveryModelCheck : public testing::TestWithParam<std::string> {};
+
+TEST_P(EveryModelCheck, PassesTheSamplingCheck) {
+  const Sampler sampler(make_model(GetParam()));
+  const SamplingCheck c = check_sampling(sampler, test_options());
+  EXPECT_TRUE(c.passes()) << failures(c);
+  EXPECT_EQ(c.angles.size(), 5u);
+}
+
+
+
+INSTANTIATE_TEST_SUITE_P(Models, EveryModelCheck, testing::ValuesIn(every_model_id()),
+                         [](const auto& info) { return test_name(info.param); });
+
+struct Case {
+  std::string id;
+  ParamValues params;
+  std::optional<Form> form;
+
+  friend void PrintTo(const Case& c, std::ostream* os) {
+    *os << c.id;
+    for (const auto& [name, value] : c.params) *os << ' ' << name << '=' << value;
+    if (c.form) *os << " form " << to_string(*c.form);
+  }
+};
+
+class Extremes : public testing::TestWithParam<Case> {};
+
+TEST_P(Extremes, PassTheSamplingCheck) {
+  const Sampler sampler(make_model(GetParam().id, GetParam().params, GetParam().form));
+  const SamplingCheck c = check_sampling(sampler, test_options());
+  EXPECT_TRUE(c.passes()) << failures(c);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    NarrowAndBroad, Extremes,
+    testing::Values(Case{"phong-normalized", {{"n", 1e4}}, {}}, Case{"phong-normalized", {{"n", 0.2}}, {}},
+                    Case{"blinn-phong-normalized", {{"n", 5e3}}, {}}, Case{"log-normalized", {{"n", 1e4}}, {}},
+                    Case{"log-normalized", {{"n", 0.3}}, {}}, Case{"log-normalized", {{"n", 20}}, Form::nh},
+                    Case{"schlick-normalized", {{"n", 2000}}, {}}, Case{"gauss", {{"n", 3000}}, {}},
+                    Case{"ggx", {{"alpha", 0.01}}, {}}, Case{"ggx", {{"alpha", 1}}, {}},
+                    Case{"cook-torrance", {{"m", 0.05}}, {}}, Case{"ward", {{"alpha", 0.02}}, {}},
+                    Case{"my-ggx", {{"alpha", 0.05}}, {}}, Case{"lobe: c^n", {{"n", 3000}}, {}}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+// Negative controls: a sampler broken in one way, and the check that must catch it.
+
+struct Broken {
+  Model model = make_model("phong-normalized");
+  Sampler right{model};
+  SamplerUnderTest test = SamplerUnderTest::of(right);
+};
+
+SamplingCheckOptions quick() {
+  SamplingCheckOptions o = test_options();
+  o.theta_deg = {0, 45, 85};
+  return o;
+}
+
+TEST(BrokenSampler, PdfOffByAFactorFailsChiSquare) {
+  Broken b;
+  b.test.pdf = [&](const Vec3& wi, const Vec3& wo) { return 1.05 * b.right.pdf(wi, wo); };
+  b.test.sample = [&](const Vec3& wi, double u1, double u2) {
+    Sample s = b.right.sample(wi, u1, u2);
+    s.pdf *= 1.05, s.weight /= 1.05;  // consistent with the wrong pdf: only χ² and ∫pdf can tell
+    return s;
+  };
+  const SamplingCheck c = check_sampling(b.test, quick());
+  EXPECT_FALSE(c.passes());
+  EXPECT_FALSE(c.angles[0].chi2_passes());
+  EXPECT_FALSE(c.angles[0].pdf_normalized());
+  EXPECT_EQ(c.angles[0].weight_mismatches, 0u);
+}
+
+TEST(BrokenSampler, MisScaledLobeFailsChiSquare) {
+  // Samples from n = 20, densities and weights as if n were 23.
+  Broken b;
+  const Sampler wider(make_model("phong-normalized", {{"n", 23}}));
+  b.test.pdf = [&](const Vec3& wi, const Vec3& wo) { return wider.pdf(wi, wo); };
+  b.test.sample = [&](const Vec3& wi, double u1, double u2) {
+    Sample s = b.right.sample(wi, u1, u2);
+    if (s.valid()) s.pdf = wider.pdf(wi, s.wo), s.weight = b.model({0, 0, 1}, wi, s.wo) * s.wo.z / s.pdf;
+    return s;
+  };
+  const SamplingCheck c = check_sampling(b.test, quick());
+  for (const AngleCheck& a : c.angles) EXPECT_FALSE(a.chi2_passes()) << a.theta_deg << "°, p = " << a.p_value;
+  EXPECT_TRUE(c.angles[0].pdf_normalized()) << "a normalized pdf, just not the samples'";
+}
+
+TEST(BrokenSampler, WrongWeightIsCaught) {
+  Broken b;
+  b.test.sample = [&](const Vec3& wi, double u1, double u2) {
+    Sample s = b.right.sample(wi, u1, u2);
+    s.weight *= 1.01;
+    return s;
+  };
+  const SamplingCheck c = check_sampling(b.test, quick());
+  EXPECT_GT(c.angles[0].weight_mismatches, 0u);
+  EXPECT_TRUE(c.angles[0].chi2_passes()) << "the directions are right";
+  EXPECT_FALSE(c.passes());
+}
+
+TEST(BrokenSampler, TruncatedLobeFailsCoverageAndAlbedo) {
+  // The lobe sampled (and its pdf renormalized) within 20° of R only: pdf = 0 where f > 0.
+  Broken b;
+  const double cos_cut = std::cos(20 * std::numbers::pi / 180);
+  auto r_dot = [](const Vec3& wi, const Vec3& wo) { return -wi.x * wo.x - wi.y * wo.y + wi.z * wo.z; };
+  const double kept = 1 - std::pow(cos_cut, 21.0);  // the mass of (n+1)/(2π) c^n within the cut
+  b.test.pdf = [&](const Vec3& wi, const Vec3& wo) { return r_dot(wi, wo) >= cos_cut ? b.right.pdf(wi, wo) / kept : 0; };
+  b.test.sample = [&](const Vec3& wi, double u1, double u2) {
+    Sample s = b.right.sample(wi, u1 * kept, u2);
+    if (s.valid()) s.pdf = b.test.pdf(wi, s.wo), s.weight = b.model({0, 0, 1}, wi, s.wo) * s.wo.z / s.pdf;
+    return s;
+  };
+  SamplingCheckOptions o = quick();
+  o.theta_deg = {0};
+  const SamplingCheck c = check_sampling(b.test, o);
+  EXPECT_GT(c.angles[0].uncovered_nodes, 0u);
+  EXPECT_FALSE(c.angles[0].albedo_agrees()) << c.angles[0].mean_weight << " vs " << c.angles[0].albedo;
+}
+
+TEST(BrokenSampler, SamplesBelowTheHorizonAreCaught) {
+  Broken b;
+  b.test.sample = [&](const Vec3& wi, double u1, double u2) {
+    Sample s = b.right.sample(wi, u1, u2);
+    if (u2 < 0.01) s = {Vec3{0, 0.6, -0.8}, 1, 1};
+    return s;
+  };
+  const SamplingCheck c = check_sampling(b.test, quick());
+  EXPECT_GT(c.angles[0].outside, 0u);
+  EXPECT_FALSE(c.passes());
+}
+
+TEST(SamplingCheck, AnglesAreSidakCorrected) {
+  const SamplingCheck c = check_sampling(Sampler(make_model("lambert")), quick());
+  EXPECT_NEAR(c.angles[0].alpha, 1 - std::pow(0.99, 1.0 / 3), 1e-15);
+}
+
+TEST(SamplingCheck, RejectsBadOptions) {
+  const Sampler sampler(make_model("lambert"));
+  SamplingCheckOptions o;
+  o.theta_deg = {90};
+  EXPECT_THROW(check_sampling(sampler, o), InvalidArgument);
+  o = {};
+  o.theta_deg = {};
+  EXPECT_THROW(check_sampling(sampler, o), InvalidArgument);
+  o = {};
+  o.samples = 10;
+  EXPECT_THROW(check_sampling(sampler, o), InvalidArgument);
+  o = {};
+  o.cos_bins = 1000;
+  EXPECT_THROW(check_sampling(sampler, o), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace specula::sampling
