@@ -23,9 +23,11 @@ report: deps
 	@build/release/specula report --out report
 
 # The lobe benchmark (scalar libm against SIMD exact and fast, with the machine's limits; under a
-# minute), then the Google Benchmark timings of the library's other paths.
+# minute), the energy-table benchmark (cubature against Monte Carlo, a few minutes: the Monte Carlo
+# side draws 2^33 samples), then the Google Benchmark timings of the library's other paths.
 bench: build
 	@build/release/bench/specula_lobe_bench
+	@build/release/bench/specula_lut_bench
 	@build/release/bench/specula_bench
 	@build/release/bench/specula_render_bench
 

@@ -66,6 +66,7 @@ void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_glsl_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_lut_command(CLI::App& app);
 void add_sample_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_serve_command(CLI::App& app);

@@ -67,6 +67,12 @@ std::string text_report(const std::vector<queries::CheckCase>& cases, double las
     if (!r.conserves_energy)
       out += fmt::format(": reflects {:.4g} % more than it receives at θ_i = {:.6g}°",
                          100 * (r.max_albedo.value - 1), r.max_albedo.theta_deg);
+    const auto* compensated = m.is_lobe() ? nullptr : std::get_if<Compensated>(&m.brdf());
+    if (compensated && !compensated->table->compensates())
+      out += "\n  energy compensation         does not apply: the base model reflects more than it receives";
+    else if (compensated)
+      out += fmt::format("\n  energy compensation         albedo 1 within the table's error {:.2g}: max |ρ − 1| = {:.2g} on the θ_i grid",
+                         r.compensation_error, r.max_deviation_from_one);
     out += fmt::format("\n  reciprocity                 {}: max relative |f(l,v) − f(v,l)| = {:.3g} over {} pairs\n",
                        verdict(r.reciprocal), r.max_asymmetry, r.pairs);
     out += fmt::format("  non-negativity              {}: min f = {:.6g}\n", verdict(r.non_negative), r.min_value);

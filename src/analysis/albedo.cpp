@@ -139,9 +139,18 @@ double brdf_width(const FullBrdf& brdf) {
         if constexpr (std::is_same_v<B, Ward> || std::is_same_v<B, Ggx>) return b.alpha;
         else if constexpr (std::is_same_v<B, Lambert>) return kPi / 2;
         else if constexpr (std::is_same_v<B, FormulaBrdf>) return formula_brdf_width(b);
+        else if constexpr (std::is_same_v<B, Compensated>) return angular_width(*b.base);
         else return b.m;
       },
       brdf);
+}
+
+/// ρ of M + f_ms is ρ_M plus f_ms's own albedo, which is separable and known exactly from the table
+/// (EnergyTable::ms_scale): (1 − E(μ_i))₊ · ms_scale.
+Albedo compensated_albedo(const Compensated& model, double theta_i) {
+  const Albedo base = albedo(*model.base, theta_i);
+  const double lost = std::max(0.0, 1 - model.table->at(std::cos(theta_i)));
+  return {base.value + lost * model.table->ms_scale, base.error_estimate};
 }
 
 }  // namespace
@@ -163,6 +172,8 @@ Albedo albedo(const Model& model, double theta_i) {
     throw InvalidArgument(fmt::format("incidence angle {} rad is outside [0, π/2)", theta_i));
   if (model.is_lobe() && model.form() == Form::rv)
     return std::visit([&](const auto& l) { return rv_albedo(l, model.coef(), theta_i); }, model.lobe());
+  if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf()))
+    return compensated_albedo(*compensated, theta_i);
   HalfVectorShape shape{angular_width(model)};
   if (model.is_lobe()) {
     return std::visit(

@@ -27,12 +27,16 @@ Vec3 random_direction(std::mt19937_64& rng) {
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
-}  // namespace
+/// ρ on the grid of max_albedo: every step_deg below 89.5°, then the grazing angles beyond.
+struct AlbedoGrid {
+  std::vector<double> degrees, rho;
+};
 
-MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<double>& grazing_deg) {
+AlbedoGrid albedo_grid(const Model& model, double step_deg, const std::vector<double>& grazing_deg) {
   if (!(step_deg >= 0.01 && step_deg <= 45))
     throw InvalidArgument("the θ_i grid step must be in [0.01, 45] degrees");
-  std::vector<double> degrees;
+  AlbedoGrid grid;
+  std::vector<double>& degrees = grid.degrees;
   for (double d = 0; d < 89.5; d += step_deg) degrees.push_back(d);
   for (const double d : grazing_deg) {
     require_incidence_deg(d, "grazing angle");
@@ -40,8 +44,13 @@ MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<doub
   }
   std::vector<double> radians(degrees.size());
   for (std::size_t i = 0; i < degrees.size(); ++i) radians[i] = degrees[i] * kDegree;
-  const std::vector<double> rho = albedo_curve(model, radians);
+  grid.rho = albedo_curve(model, radians);
+  return grid;
+}
 
+MaxAlbedo max_of(const Model& model, const AlbedoGrid& grid, double step_deg) {
+  const std::vector<double>& degrees = grid.degrees;
+  const std::vector<double>& rho = grid.rho;
   const auto best = static_cast<std::size_t>(std::max_element(rho.begin(), rho.end()) - rho.begin());
   MaxAlbedo result{rho[best], degrees[best]};
   // An interior maximum is refined; one at the grid's last point (89.9°) is the supremum's
@@ -57,10 +66,17 @@ MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<doub
   return result;
 }
 
+}  // namespace
+
+MaxAlbedo max_albedo(const Model& model, double step_deg, const std::vector<double>& grazing_deg) {
+  return max_of(model, albedo_grid(model, step_deg, grazing_deg), step_deg);
+}
+
 CheckResult check(const Model& model, const CheckOptions& options) {
   CheckResult r;
   r.albedo_normal = albedo(model, 0).value;
-  r.max_albedo = max_albedo(model, options.grid_step_deg, options.grazing_deg);
+  const AlbedoGrid grid = albedo_grid(model, options.grid_step_deg, options.grazing_deg);
+  r.max_albedo = max_of(model, grid, options.grid_step_deg);
   r.max_albedo.value = std::max(r.max_albedo.value, r.albedo_normal);
   if (r.max_albedo.value == r.albedo_normal) r.max_albedo.theta_deg = 0;
 
@@ -76,7 +92,13 @@ CheckResult check(const Model& model, const CheckOptions& options) {
     if (scale > 0) r.max_asymmetry = std::max(r.max_asymmetry, std::abs(f_lv - f_vl) / scale);
   }
   r.pairs = options.reciprocity_pairs;
-  r.conserves_energy = r.max_albedo.value <= 1 + options.energy_tolerance;
+  double tolerance = options.energy_tolerance;
+  if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf())) {
+    r.compensation_error = compensated->table->albedo_error;
+    for (const double rho : grid.rho) r.max_deviation_from_one = std::max(r.max_deviation_from_one, std::abs(rho - 1));
+    if (compensated->table->compensates()) tolerance += r.compensation_error;
+  }
+  r.conserves_energy = r.max_albedo.value <= 1 + tolerance;
   r.reciprocal = r.max_asymmetry <= options.reciprocity_tolerance;
   r.non_negative = r.min_value >= 0;
   return r;

@@ -195,6 +195,54 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
                       k.empty() ? lobe_value : k + " * " + lobe_value));
 }
 
+void add_entry(ShaderSource& src, const Target& target, const Model& model);
+
+/// M+ms: M's entry, its energy table as a constant array (E at M's bound parameter values) with
+/// the table's lookup, and the entry f_M + f_ms (models/compensated.h).
+void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
+  if (target.language != Language::glsl)
+    throw InvalidArgument(fmt::format("'{}': a compensated model (M+ms) is exported as GLSL only so far (specula glsl)",
+                                      model.id()));
+  const Model& base = *compensated.base;
+  add_entry(src, target, base);
+  const EnergyTable& table = *compensated.table;
+  const auto lit = [&](double value) { return target.literal(value); };
+  const std::string name = entry_name(model), n = std::to_string(EnergyTable::kNodes);
+  std::string values;
+  for (const double e : table.e) values += (values.empty() ? "" : ", ") + lit(e);
+  src.add(name + "_energy",
+          fmt::format("// E(mu) of {} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
+                      "// max interpolation error {:.2g} (specula lut). Kulla & Conty 2017.\n"
+                      "const float {}_E[{}] = float[{}]({});\n"
+                      "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n"
+                      "  int j = int(clamp(floor(t), 0.0, {}.0));\n"
+                      "  return mix({}_E[j], {}_E[j + 1], t - float(j));\n}}",
+                      base.id(), n, n, table.interpolation_error, name, n, n, values, name, n,
+                      EnergyTable::kNodes - 2, name, name));
+  const double ms_factor = table.e_avg < 1 ? 1 / (kPi * (1 - table.e_avg)) : 0.0;
+  const std::string names = parameter_names(base.info());
+  src.add(name, fmt::format("// {}: f = f_{} + (1 - E(N.L))(1 - E(N.V)) / (pi (1 - E_avg)), E_avg = {:.9g}; the table holds E\n"
+                            "// at the parameter values it was made for only. Source: Kulla & Conty 2017.\n"
+                            "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
+                            "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n"
+                            "  float ms = max(0.0, 1.0 - {}_energy(nl)) * max(0.0, 1.0 - {}_energy(nv)) * {};\n"
+                            "  return {}(N, L, V{}{}) + ms;\n}}",
+                            model.info().name, base.id(), table.e_avg, name, parameter_list(model.info()), name, name,
+                            lit(ms_factor), entry_name(base), names.empty() ? "" : ", ", names));
+}
+
+/// The model's entry function `specula_<id>(N, L, V, parameters…)` and what it calls.
+void add_entry(ShaderSource& src, const Target& target, const Model& model) {
+  if (model.is_lobe())
+    add_lobe_entry(src, target, model);
+  else if (const auto* compensated = std::get_if<Compensated>(&model.brdf()))
+    add_compensated_entry(src, target, model, *compensated);
+  else if (const families::ModelDefinition* builtin = builtin_definition(model))
+    src.add_file(builtin->glsl_file);
+  else
+    add_formula_brdf(src, target, model);
+}
+
 /// The entry's arguments from specula_brdf's vec4: the first four parameters; any beyond are
 /// the model's values, baked in.
 std::string entry_arguments(const Target& target, const Model& model) {
@@ -284,12 +332,7 @@ std::string model_glsl(const Model& model) { return model_source(model, Language
 std::string model_source(const Model& model, Language language) {
   const Target target{language};
   ShaderSource src(computed_values(target));
-  if (model.is_lobe())
-    add_lobe_entry(src, target, model);
-  else if (const families::ModelDefinition* builtin = builtin_definition(model))
-    src.add_file(builtin->glsl_file);
-  else
-    add_formula_brdf(src, target, model);
+  add_entry(src, target, model);
   if (language != Language::cpp)
     src.add("specula_brdf",
             fmt::format("// The entry point renderers call: {} with params = ({}).\n"

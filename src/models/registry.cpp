@@ -3,7 +3,10 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <map>
+#include <mutex>
 
+#include "specula/analysis/energy.h"
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
 #include "specula/models/model.h"
@@ -83,6 +86,54 @@ Catalogue& catalogue() {
   return c;
 }
 
+/// The compensated models looked up so far ("M+ms", models/compensated.h), by id.
+struct CompensatedInfos {
+  std::mutex mutex;
+  std::map<std::string, std::unique_ptr<const ModelInfo>, std::less<>> infos;
+};
+
+CompensatedInfos& compensated_infos() {
+  static CompensatedInfos c;
+  return c;
+}
+
+/// M+ms: M's parameters; made as M at the same values plus the lobe of M's cached energy table.
+/// The table comes from the analysis module (analysis/energy.h): the one call from the registry
+/// upward, since the table is M's albedo.
+ModelInfo compensated_info(const ModelInfo& base) {
+  ModelInfo info{base.id + std::string(kCompensatedSuffix), base.name + " + multiple scattering",
+                 fmt::format("{} with Kulla-Conty energy compensation (albedo 1)", base.id),
+                 base.source + "; Kulla & Conty 2017", ModelKind::brdf, base.form, Normalization::none, "1",
+                 base.params, {}, nullptr, base.origin};
+  info.make = [&base](std::span<const double> values) -> ModelImpl {
+    ParamValues params;
+    for (std::size_t i = 0; i < values.size(); ++i) params[base.params[i].name] = values[i];
+    // Registry entries live as long as the process (user ones until cleared, with this entry).
+    auto base_model = std::make_shared<const Model>(
+        make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), &base), params));
+    auto table = analysis::cached_energy_table(*base_model);
+    return FullBrdf{Compensated{std::move(base_model), std::move(table)}};
+  };
+  return info;
+}
+
+const ModelInfo* find_listed(std::string_view id) noexcept {
+  for (const auto& m : models())
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+const ModelInfo* find_compensated(std::string_view id) noexcept {
+  const ModelInfo* base = find_listed(compensated_base_id(id));
+  if (!base || !compensated_base_id(base->id).empty()) return nullptr;  // no M+ms+ms
+  CompensatedInfos& c = compensated_infos();
+  const std::lock_guard lock(c.mutex);
+  auto found = c.infos.find(id);
+  if (found == c.infos.end())
+    found = c.infos.emplace(std::string(id), std::make_unique<const ModelInfo>(compensated_info(*base))).first;
+  return found->second.get();
+}
+
 }  // namespace
 
 const std::deque<ModelInfo>& models() { return catalogue().models; }
@@ -101,14 +152,23 @@ void register_models(std::vector<ModelInfo> infos) {
 }
 
 void clear_registered_models() {
+  {
+    CompensatedInfos& compensated = compensated_infos();
+    const std::lock_guard lock(compensated.mutex);
+    std::erase_if(compensated.infos, [](const auto& entry) { return !entry.second->is_builtin(); });
+  }
+  analysis::clear_energy_tables();
   auto& c = catalogue();
   c.models.erase(c.models.begin() + static_cast<std::ptrdiff_t>(c.builtin_count), c.models.end());
 }
 
 const ModelInfo* find_model(std::string_view id) noexcept {
-  for (const auto& m : models())
-    if (m.id == id) return &m;
-  return nullptr;
+  if (const ModelInfo* listed = find_listed(id)) return listed;
+  try {
+    return find_compensated(id);
+  } catch (...) {  // out of memory: as unknown
+    return nullptr;
+  }
 }
 
 double Model::param(std::string_view name) const {
@@ -138,7 +198,7 @@ std::string param_names(const ModelInfo& info) {
 std::string model_ids() {
   std::vector<std::string_view> ids;
   for (const auto& m : models()) ids.push_back(m.id);
-  return fmt::format("{}", fmt::join(ids, ", "));
+  return fmt::format("{}; any of them compensated: ID{}", fmt::join(ids, ", "), kCompensatedSuffix);
 }
 
 }  // namespace

@@ -256,7 +256,8 @@ ModelDesc describe(const FullBrdf& brdf) {
         } else if constexpr (std::is_same_v<B, Lambert>) {
           return {Kind::lambert, b.rho, 0};
         } else {
-          static_assert(std::is_same_v<B, FormulaBrdf>, "every full BRDF has a kernel or a formula");
+          static_assert(std::is_same_v<B, FormulaBrdf> || std::is_same_v<B, Compensated>,
+                        "every full BRDF has a kernel, a formula or a base model");
           return {Kind::formula, 0, 0};
         }
       },
@@ -303,6 +304,17 @@ void formula_brdf_batch(const FormulaBrdf& brdf, const DirectionBatch& dirs, std
   }
 }
 
+/// M+ms: M's batch, then the multiple-scattering lobe of the table (the scalar arithmetic of
+/// Compensated::operator(), on the same dot products).
+void compensated_batch(const Compensated& model, Tier tier, const DirectionBatch& dirs, std::size_t count, double* out) {
+  eval_batch(*model.base, tier, dirs, {out, count});
+  for (std::size_t i = 0; i < count; ++i) {
+    const double nl = dirs.nx[i] * dirs.lx[i] + dirs.ny[i] * dirs.ly[i] + dirs.nz[i] * dirs.lz[i];
+    const double nv = dirs.nx[i] * dirs.vx[i] + dirs.ny[i] * dirs.vy[i] + dirs.nz[i] * dirs.vz[i];
+    out[i] = nl > 0 && nv > 0 ? out[i] + model.table->multiple_scattering(nl, nv) : 0.0;
+  }
+}
+
 }  // namespace
 
 void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::span<double> out) {
@@ -312,6 +324,8 @@ void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::
   if (model.is_lobe()) return lobe_model_batch(model, tier, dirs, count, out.data());
   if (const auto* formula = std::get_if<FormulaBrdf>(&model.brdf()))
     return formula_brdf_batch(*formula, dirs, count, out.data());
+  if (const auto* compensated = std::get_if<Compensated>(&model.brdf()))
+    return compensated_batch(*compensated, tier, dirs, count, out.data());
   HWY_DYNAMIC_DISPATCH(FullBrdfBatch)(dirs, describe(model.brdf()), tier == Tier::fast, count, out.data());
 }
 
@@ -321,6 +335,12 @@ ErrorBound error_bound(const Model& model, Tier tier) noexcept {
     ErrorBound b = error_bound<double>(spec_of(model.lobe()).family, tier);
     const double k = model.coef();
     return {b.rel + eps, b.rel_per_ln, b.abs * k, b.floor * k, b.abs_below * k};
+  }
+  // M+ms: M's bound and one rounding for adding f_ms ≥ 0, itself the scalar arithmetic.
+  if (const auto* compensated = std::get_if<Compensated>(&model.brdf())) {
+    ErrorBound b = error_bound(*compensated->base, tier);
+    b.rel += eps;
+    return b;
   }
   const families::Family* family = families::family_of(model.info());
   if (!family) return {};  // a user's formula: bit-identical to FormulaBrdf

@@ -36,6 +36,10 @@ struct CheckResult {
   double max_asymmetry = 0;      ///< worst relative |f(l,v) − f(v,l)| over the pairs
   std::size_t pairs = 0;
   double min_value = 0;          ///< smallest f seen over the pairs
+  /// M+ms (models/compensated.h): its table's stated albedo error (EnergyTable::albedo_error), which the energy verdict
+  /// allows beyond energy_tolerance, and max |ρ − 1| over the θ_i grid. 0 for other models.
+  double compensation_error = 0;
+  double max_deviation_from_one = 0;
   bool conserves_energy = false;
   bool reciprocal = false;
   bool non_negative = false;

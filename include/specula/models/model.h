@@ -19,6 +19,7 @@
 #include "specula/brdf/lobe_brdf.h"
 #include "specula/brdf/ward.h"
 #include "specula/lobes/lobes.h"
+#include "specula/models/compensated.h"
 
 namespace specula {
 
@@ -49,7 +50,8 @@ enum class Normalization {
 const char* to_string(ModelKind kind) noexcept;
 const char* to_string(Normalization normalization) noexcept;
 
-using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Lambert, FormulaBrdf>;
+/// Compensated (models/compensated.h): any model with Kulla-Conty's multiple-scattering lobe.
+using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Lambert, FormulaBrdf, Compensated>;
 
 /// A lobe model: f = k·F(c), c from the form (the run-time twin of LobeBrdf<L>).
 struct LobeModel {
@@ -84,7 +86,8 @@ struct ModelInfo {
 /// Every model, in the order the CLI lists them: the built-in ones, then those registered.
 /// References stay valid while models are registered.
 const std::deque<ModelInfo>& models();
-/// nullptr if unknown.
+/// nullptr if unknown. "M+ms" for a known M (not itself compensated) is M's compensated model
+/// (models/compensated.h): not in models(), made on first lookup and kept.
 const ModelInfo* find_model(std::string_view id) noexcept;
 /// Adds user-defined models (models/model_file.h) to models(). Throws InvalidArgument, adding
 /// none, if an id is already taken (by a built-in model or an earlier registration) or repeated.
@@ -154,5 +157,11 @@ Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& param
 
 /// "rv" or "nh"; throws InvalidArgument otherwise.
 Form parse_form(std::string_view text);
+
+inline double Compensated::operator()(const Vec3& n, const Vec3& l, const Vec3& v) const noexcept {
+  const double nl = dot(n, l), nv = dot(n, v);
+  if (nl <= 0 || nv <= 0) return 0;
+  return (*base)(n, l, v) + table->multiple_scattering(nl, nv);
+}
 
 }  // namespace specula

@@ -3,7 +3,9 @@
 // text metadata (model, parameters, form, renderer settings). Writes are atomic: the file is
 // encoded in memory, written to a temporary name and renamed, so a failed write leaves no file.
 // Every failure is one InvalidArgument line naming the path ("cannot write '…': …").
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -27,6 +29,11 @@ void write_png(const std::filesystem::path& path, const Image& image, const Disp
                const Metadata& metadata = {});
 /// 8-bit sRGB pixels as they are (e.g. a composed comparison panel), with metadata as above.
 void write_png(const std::filesystem::path& path, const Srgb8Image& image, const Metadata& metadata = {});
+
+/// 16-bit grayscale samples as they are (no sRGB chunk: data, not a picture), row-major from the
+/// top, with metadata as above. Throws InvalidArgument unless gray has width·height samples.
+void write_png16(const std::filesystem::path& path, int width, int height, std::span<const std::uint16_t> gray,
+                 const Metadata& metadata = {});
 
 /// The linear samples as they are (no display transform), one string attribute per entry.
 void write_exr(const std::filesystem::path& path, const Image& image, ExrPixel pixel = ExrPixel::half,

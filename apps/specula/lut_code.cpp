@@ -1,0 +1,102 @@
+#include "lut_code.h"
+
+#include <fmt/format.h>
+
+#include "specula/glsl/glsl.h"
+
+namespace specula::cli {
+namespace {
+
+/// An evenly spaced axis as the lookup sees it: first value, step (1 for a single value), count.
+struct Axis {
+  double first, step;
+  std::size_t count;
+};
+
+Axis axis_of(const std::vector<double>& v) {
+  return {v.front(), v.size() > 1 ? (v.back() - v.front()) / static_cast<double>(v.size() - 1) : 1.0, v.size()};
+}
+
+std::string float_list(const std::vector<double>& values, std::size_t per_line) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    text += fmt::format("{}{}", i == 0 ? "" : (i % per_line == 0 ? ",\n    " : ", "), glsl::float_literal(values[i]));
+  return text;
+}
+
+std::string header_comment(const analysis::AlbedoLut& lut, const LutDescription& d) {
+  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
+  std::string text = fmt::format(
+      "// {}\n// Directional albedo E(mu, {}) of {} (mu = cos theta_i) by specula's deterministic cubature\n"
+      "// (>= 8 digits); E_avg = 2 int_0^1 E(mu) mu dmu by adaptive quadrature in mu.\n"
+      "// Grid: mu = {} + {} j, j < {}",
+      d.command, d.param.empty() ? "-" : d.param, d.model, mu.first, mu.step, mu.count);
+  if (!d.param.empty()) text += fmt::format("; {} = {} + {} i, i < {}", d.param, p.first, p.step, p.count);
+  text += fmt::format(".\n// Bilinear interpolation error, max |lookup - cubature| at the cells' centres: {:.3g}", d.error.e);
+  if (!lut.e_avg.empty()) text += fmt::format("; E_avg (linear in {}): {:.3g}", d.param.empty() ? "-" : d.param, d.error.e_avg);
+  return text + ". Outside the grid the lookup clamps.\n";
+}
+
+}  // namespace
+
+std::string lut_cpp(const analysis::AlbedoLut& lut, const LutDescription& d) {
+  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
+  std::string text = header_comment(lut, d);
+  text += fmt::format(
+      "#include <algorithm>\n#include <cmath>\n\nnamespace specula_lut {{\n\n"
+      "inline constexpr int kMuCount = {}, kPCount = {};\n"
+      "inline constexpr float kMuFirst = {}f, kMuStep = {}f, kPFirst = {}f, kPStep = {}f;\n"
+      "/// E at (mu_j, p_i): kE[i * kMuCount + j].\n"
+      "inline constexpr float kE[kPCount * kMuCount] = {{\n    {}}};\n",
+      mu.count, p.count, glsl::float_literal(mu.first), glsl::float_literal(mu.step), glsl::float_literal(p.first),
+      glsl::float_literal(p.step), float_list(lut.e, 8));
+  if (!lut.e_avg.empty()) text += fmt::format("inline constexpr float kEAvg[kPCount] = {{\n    {}}};\n", float_list(lut.e_avg, 8));
+  text +=
+      "\n/// Cell index and weight of x on an axis, clamped to it.\n"
+      "inline void locate(float x, float first, float step, int count, int& i, int& i1, float& w) {\n"
+      "  const float t = std::clamp((x - first) / step, 0.0f, float(count - 1));\n"
+      "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}\n\n"
+      "/// E(mu, p), bilinear.\ninline float energy(float mu, float p) {\n  int i, i1, j, j1;\n  float wp, wm;\n"
+      "  locate(p, kPFirst, kPStep, kPCount, i, i1, wp);\n  locate(mu, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
+      "  const float e0 = kE[i * kMuCount + j] + wm * (kE[i * kMuCount + j1] - kE[i * kMuCount + j]);\n"
+      "  const float e1 = kE[i1 * kMuCount + j] + wm * (kE[i1 * kMuCount + j1] - kE[i1 * kMuCount + j]);\n"
+      "  return e0 + wp * (e1 - e0);\n}\n";
+  if (!lut.e_avg.empty())
+    text += "\n/// E_avg(p), linear.\ninline float energy_average(float p) {\n  int i, i1;\n  float w;\n"
+            "  locate(p, kPFirst, kPStep, kPCount, i, i1, w);\n  return kEAvg[i] + w * (kEAvg[i1] - kEAvg[i]);\n}\n";
+  return text + "\n}  // namespace specula_lut\n";
+}
+
+std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& d) {
+  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
+  std::string text = header_comment(lut, d);
+  const std::size_t cells = lut.e.size();
+  text += fmt::format(
+      "// E at (mu_j, p_i): specula_lut_E[i * {} + j]. GLSL 3.30, ES 3.00, WebGL 2.\n"
+      "const float specula_lut_E[{}] = float[{}](\n    {});\n",
+      mu.count, cells, cells, float_list(lut.e, 8));
+  if (!lut.e_avg.empty())
+    text += fmt::format("const float specula_lut_E_avg[{}] = float[{}](\n    {});\n", p.count, p.count, float_list(lut.e_avg, 8));
+  text += fmt::format(
+      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
+      "vec3 specula_lut_locate(float x, float first, float step, int count) {{\n"
+      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
+      "  int i = min(int(t), max(count - 2, 0));\n  return vec3(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
+      "// E(mu, p), bilinear.\nfloat specula_lut_energy(float mu, float p) {{\n"
+      "  vec3 a = specula_lut_locate(p, {}, {}, {});\n  vec3 b = specula_lut_locate(mu, {}, {}, {});\n"
+      "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
+      "  float e0 = mix(specula_lut_E[i * {} + j], specula_lut_E[i * {} + j1], b.z);\n"
+      "  float e1 = mix(specula_lut_E[i1 * {} + j], specula_lut_E[i1 * {} + j1], b.z);\n"
+      "  return mix(e0, e1, a.z);\n}}\n",
+      glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
+      glsl::float_literal(mu.step), mu.count, mu.count, mu.count, mu.count, mu.count);
+  if (!lut.e_avg.empty())
+    text += fmt::format(
+        "\n// E_avg(p), linear.\nfloat specula_lut_energy_average(float p) {{\n"
+        "  vec3 a = specula_lut_locate(p, {}, {}, {});\n"
+        "  return mix(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
+        glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
+  return text;
+}
+
+}  // namespace specula::cli

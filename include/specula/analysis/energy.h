@@ -1,0 +1,68 @@
+#pragma once
+// Energy tables: the directional albedo E(μ) (μ = cos θ_i) and its cosine-weighted average
+// E_avg = 2∫₀¹ E(μ) μ dμ, by the deterministic cubature of analysis/albedo.h (≥ 8 digits) — for
+// `specula lut` (a 2D table E(μ, p) over a parameter p) and for the compensated models "M+ms"
+// (models/compensated.h), whose 1D table is built here on first use and cached.
+// docs/energy-compensation.md.
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "specula/analysis/albedo.h"
+#include "specula/models/compensated.h"
+#include "specula/models/model.h"
+
+namespace specula::analysis {
+
+/// E(μ) = ρ(acos μ). Throws InvalidArgument unless kMinMu ≤ μ ≤ 1.
+Albedo albedo_at_mu(const Model& model, double mu);
+/// The smallest μ taken (θ_i = 89.99999994°): below it acos(μ) rounds toward 90°.
+inline constexpr double kMinMu = 1e-9;
+
+/// E_avg = 2∫₀¹ E(μ) μ dμ = 6∫₀¹ E(s³) s⁵ ds by adaptive Gauss-Kronrod in s = μ^(1/3) (smooth
+/// where E bends near grazing): ≥ 8 digits, as E itself. Sequential; ~100-250 albedos.
+Albedo average_albedo(const Model& model);
+
+/// The energy table of `base` (EnergyTable: nodes and midpoints in parallel, E_avg, the measured
+/// interpolation error), deterministic for any thread count.
+EnergyTable energy_table(const Model& base);
+/// energy_table(base), made once per model (id, origin, parameter values, form, k) and kept.
+std::shared_ptr<const EnergyTable> cached_energy_table(const Model& base);
+/// Forgets the cached tables (the registry does when user models are cleared).
+void clear_energy_tables();
+
+/// Called as cells finish (from any thread, one call at a time): cells done, cells in all.
+using Progress = std::function<void(std::size_t done, std::size_t total)>;
+/// The model at parameter value p.
+using ModelAt = std::function<Model(double p)>;
+
+/// E(μ, p) on a grid, row-major in p (e[i * mu.size() + j] = E(mu[j], p[i])), and E_avg(p).
+struct AlbedoLut {
+  std::vector<double> p, mu;
+  std::vector<double> e;
+  std::vector<double> e_avg;  ///< one per p, or empty
+
+  double at(std::size_t i, std::size_t j) const noexcept { return e[i * mu.size() + j]; }
+  /// Bilinear interpolation of E at (μ, p) inside the grid (linear along an axis of one value).
+  double bilinear(double mu_value, double p_value) const noexcept;
+  /// Linear interpolation of E_avg at p. Precondition: e_avg not empty.
+  double linear_e_avg(double p_value) const noexcept;
+};
+
+/// Every cell in parallel (oneTBB; each cell lands at its index: the table does not depend on the
+/// thread count), the E_avg in parallel over p when `average`. Throws Interrupted when stopped.
+AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::span<const double> mu,
+                     bool average, const Progress& progress = {});
+
+/// The table's interpolation error against the cubature: max |bilinear − E| at the centres of the
+/// cells (at the midpoints of the one axis that has more than one value), and max |linear − E_avg|
+/// at the midpoints of p when the table has E_avg (else 0).
+struct LutError {
+  double e = 0;
+  double e_avg = 0;
+};
+LutError lut_interpolation_error(const AlbedoLut& lut, const ModelAt& model_at, const Progress& progress = {});
+
+}  // namespace specula::analysis

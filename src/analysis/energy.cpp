@@ -1,0 +1,205 @@
+#include "specula/analysis/energy.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <mutex>
+#include <tbb/parallel_for.h>
+#include <tuple>
+
+#include "../numeric/piecewise.h"
+#include "specula/analysis/parallel.h"
+#include "specula/exceptions.h"
+#include "specula/interrupt/interrupt.h"
+
+namespace specula::analysis {
+namespace {
+
+// E_avg's quadrature: relative tolerance at the cubature's own noise, depth bounded so that a
+// model whose E is noisy or kinked costs at most ~2000 albedos.
+constexpr double kAverageTolerance = 1e-10;
+constexpr unsigned kAverageMaxDepth = 5;
+
+/// 2∫ (1 − at(μ))₊ μ dμ over the interpolant, exactly: in s = μ^(1/3) each piece is linear in s
+/// times 6 s⁵ ds, a polynomial of degree 6, which 4-point Gauss-Legendre integrates exactly.
+double lost_energy_of_table(const EnergyTable& table) {
+  static constexpr double x[] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  static constexpr double w[] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  double total = 0;
+  const double n = static_cast<double>(EnergyTable::kNodes);
+  for (std::size_t piece = 0; piece < EnergyTable::kNodes; ++piece) {
+    const double a = static_cast<double>(piece) / n, b = static_cast<double>(piece + 1) / n;
+    for (int k = 0; k < 4; ++k) {
+      const double s = (a + b) / 2 + (b - a) / 2 * x[k];
+      total += (b - a) / 2 * w[k] * std::max(0.0, 1 - table.at(s * s * s)) * 6 * std::pow(s, 5);
+    }
+  }
+  return total;
+}
+
+std::vector<double> albedos_at(const Model& model, std::span<const double> mu) {
+  return parallel_map(mu, [&](double m) { return albedo_at_mu(model, m).value; });
+}
+
+/// What makes two models' tables the same: id, origin, parameter values, form and k.
+using TableKey = std::tuple<std::string, std::string, std::vector<double>, int, double>;
+
+TableKey key_of(const Model& m) {
+  return {std::string(m.id()), m.info().origin, {m.params().begin(), m.params().end()},
+          m.is_lobe() ? static_cast<int>(m.form()) : -1, m.is_lobe() ? m.coef() : 0.0};
+}
+
+struct TableCache {
+  std::mutex mutex;
+  std::map<TableKey, std::shared_ptr<const EnergyTable>> tables;
+};
+
+TableCache& table_cache() {
+  static TableCache cache;
+  return cache;
+}
+
+/// Index i and weight w with x = (1 − w) v[i] + w v[i + 1], clamped to the grid.
+std::pair<std::size_t, double> bracket(std::span<const double> v, double x) noexcept {
+  if (v.size() < 2) return {0, 0.0};
+  const auto upper = std::upper_bound(v.begin(), v.end(), x);
+  const auto i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(upper - v.begin() - 1, 0,
+                                                                     static_cast<std::ptrdiff_t>(v.size()) - 2));
+  return {i, std::clamp((x - v[i]) / (v[i + 1] - v[i]), 0.0, 1.0)};
+}
+
+std::vector<double> midpoints_or_values(std::span<const double> v) {
+  if (v.size() < 2) return {v.begin(), v.end()};
+  std::vector<double> mid;
+  for (std::size_t i = 0; i + 1 < v.size(); ++i) mid.push_back((v[i] + v[i + 1]) / 2);
+  return mid;
+}
+
+/// Runs cell(i) for i < count in parallel under the caller's limit, reporting progress.
+template <class Cell>
+void for_each_cell(std::size_t count, const Progress& progress, const Cell& cell) {
+  std::atomic<std::size_t> done{0};
+  std::mutex report;
+  const auto one = [&](std::size_t i) {
+    check_interrupt();
+    cell(i);
+    const std::size_t finished = ++done;
+    if (progress) {
+      const std::lock_guard lock(report);
+      progress(finished, count);
+    }
+  };
+  tbb::parallel_for(std::size_t{0}, count, carry_limit(one));
+}
+
+std::vector<Model> models_at(const ModelAt& model_at, std::span<const double> p) {
+  std::vector<Model> models;
+  for (const double value : p) models.push_back(model_at(value));
+  return models;
+}
+
+}  // namespace
+
+Albedo albedo_at_mu(const Model& model, double mu) {
+  if (!(mu >= kMinMu && mu <= 1))
+    throw InvalidArgument(fmt::format("mu = {} is outside [{:g}, 1]", mu, kMinMu));
+  return albedo(model, std::acos(mu));
+}
+
+Albedo average_albedo(const Model& model) {
+  auto integrand = [&](double s) { return 6 * std::pow(s, 5) * albedo_at_mu(model, std::max(kMinMu, s * s * s)).value; };
+  const auto e = numeric::integrate_pieces(integrand, 0, 1, 0.25, {0.5}, kAverageTolerance, kAverageMaxDepth);
+  return {e.value, e.error};
+}
+
+EnergyTable energy_table(const Model& base) {
+  std::vector<double> nodes(EnergyTable::kNodes), mids(EnergyTable::kNodes);
+  for (std::size_t j = 0; j < nodes.size(); ++j) nodes[j] = EnergyTable::node_mu(j), mids[j] = EnergyTable::midpoint_mu(j);
+  EnergyTable table;
+  table.e = albedos_at(base, nodes);
+  const std::vector<double> at_mids = albedos_at(base, mids);
+  for (std::size_t j = 0; j < mids.size(); ++j)
+    table.interpolation_error = std::max(table.interpolation_error, std::abs(table.at(mids[j]) - at_mids[j]));
+  const Albedo average = average_albedo(base);
+  table.e_avg = average.value;
+  table.e_avg_error = average.error_estimate;
+  table.ms_scale = table.e_avg < 1 ? lost_energy_of_table(table) / (1 - table.e_avg) : 0;
+  double deviation = 0;
+  auto compensated = [&](double mu, double e) { return e + std::max(0.0, 1 - table.at(mu)) * table.ms_scale; };
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    deviation = std::max({deviation, std::abs(compensated(nodes[j], table.e[j]) - 1),
+                          std::abs(compensated(mids[j], at_mids[j]) - 1)});
+  table.albedo_error = EnergyTable::kErrorMargin * deviation;
+  return table;
+}
+
+std::shared_ptr<const EnergyTable> cached_energy_table(const Model& base) {
+  TableCache& cache = table_cache();
+  const TableKey key = key_of(base);
+  {
+    const std::lock_guard lock(cache.mutex);
+    if (const auto found = cache.tables.find(key); found != cache.tables.end()) return found->second;
+  }
+  // Built without the lock: the cubature runs parallel loops, whose waiting thread may pick up
+  // another task that asks for a table. Two threads may build the same table; it is deterministic,
+  // and the first one kept.
+  auto table = std::make_shared<const EnergyTable>(energy_table(base));
+  const std::lock_guard lock(cache.mutex);
+  return cache.tables.try_emplace(key, std::move(table)).first->second;
+}
+
+void clear_energy_tables() {
+  TableCache& cache = table_cache();
+  const std::lock_guard lock(cache.mutex);
+  cache.tables.clear();
+}
+
+double AlbedoLut::bilinear(double mu_value, double p_value) const noexcept {
+  const auto [i, wp] = bracket(p, p_value);
+  const auto [j, wm] = bracket(mu, mu_value);
+  auto row = [&](std::size_t r) {
+    return mu.size() < 2 ? at(r, 0) : (1 - wm) * at(r, j) + wm * at(r, j + 1);
+  };
+  return p.size() < 2 ? row(0) : (1 - wp) * row(i) + wp * row(i + 1);
+}
+
+double AlbedoLut::linear_e_avg(double p_value) const noexcept {
+  const auto [i, w] = bracket(p, p_value);
+  return p.size() < 2 ? e_avg[0] : (1 - w) * e_avg[i] + w * e_avg[i + 1];
+}
+
+AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::span<const double> mu, bool average,
+                     const Progress& progress) {
+  for (const double m : mu)
+    if (!(m >= kMinMu && m <= 1)) throw InvalidArgument(fmt::format("mu = {} is outside [{:g}, 1]", m, kMinMu));
+  const std::vector<Model> models = models_at(model_at, p);
+  AlbedoLut lut{{p.begin(), p.end()}, {mu.begin(), mu.end()}, std::vector<double>(p.size() * mu.size()), {}};
+  // The E_avg first (each costs ~100 cells), then the cells: one parallel loop over both.
+  const std::size_t averages = average ? p.size() : 0;
+  lut.e_avg.resize(averages);
+  for_each_cell(averages + lut.e.size(), progress, [&](std::size_t k) {
+    if (k < averages) {
+      lut.e_avg[k] = average_albedo(models[k]).value;
+    } else {
+      const std::size_t cell = k - averages;
+      lut.e[cell] = albedo_at_mu(models[cell / mu.size()], mu[cell % mu.size()]).value;
+    }
+  });
+  return lut;
+}
+
+LutError lut_interpolation_error(const AlbedoLut& lut, const ModelAt& model_at, const Progress& progress) {
+  const std::vector<double> p_mid = midpoints_or_values(lut.p), mu_mid = midpoints_or_values(lut.mu);
+  const AlbedoLut exact = albedo_lut(model_at, p_mid, mu_mid, !lut.e_avg.empty() && lut.p.size() > 1, progress);
+  LutError error;
+  for (std::size_t i = 0; i < p_mid.size(); ++i) {
+    for (std::size_t j = 0; j < mu_mid.size(); ++j)
+      error.e = std::max(error.e, std::abs(lut.bilinear(mu_mid[j], p_mid[i]) - exact.at(i, j)));
+    if (!exact.e_avg.empty()) error.e_avg = std::max(error.e_avg, std::abs(lut.linear_e_avg(p_mid[i]) - exact.e_avg[i]));
+  }
+  return error;
+}
+
+}  // namespace specula::analysis
