@@ -28,7 +28,7 @@ void add_export_command(CLI::App& app) {
       "normalization, computed from the parameters (the log lobe's coef(n) by its Chebyshev series).\n"
       "  hlsl, msl  float specula_brdf(float3 N, float3 L, float3 V, float4 params), as in `specula glsl`\n"
       "  brdf       analytic; one slider per parameter; vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)\n"
-      "  cpp        namespace specula_export_<id> { double f(const Vec3& N, const Vec3& L, const Vec3& V); }\n"
+      "  cpp        namespace specula_export_<id>: double f(N, L, V); Sample sample(wi, u1, u2); double pdf(wi, wo)\n"
       "Examples:\n"
       "  specula export --model ggx -p alpha=0.2 --format hlsl -o ggx.hlsl\n"
       "  specula export --model log-normalized -p n=50 --format brdf -o log.brdf\n"

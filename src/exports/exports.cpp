@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "sampler_cpp.h"
 #include "specula/exceptions.h"
 #include "specula/glsl/glsl.h"
 #include "specula/queries/queries.h"
@@ -96,12 +97,15 @@ std::string cpp_header(const Model& model) {
       "// <cmath>. N, L, V: unit vectors, L toward the light, V toward the viewer; 0 below the horizon.\n"
       "//   {}::f(N, L, V)   the model at these parameters\n"
       "//   {}::{}(N, L, V{})   at any\n"
+      "//   {}::sample(wi, u1, u2), {}::pdf(wi, wo)   importance sampling, as specula's sampling::Sampler\n"
+      "//     (N = +z, wi toward the light, wo toward the viewer; at these parameters)\n"
       "#pragma once\n#include <cmath>\n\nnamespace {} {{\n\n{}"
       "// The model at the exported parameters ({}).\n"
       "inline double f(const Vec3& N, const Vec3& L, const Vec3& V) {{ return {}(N, L, V{}); }}\n\n"
-      "}}  // namespace {}\n",
-      model_line(model), model.info().name, ns, ns, glsl::entry_name(model), joined(glsl_names(model)), ns,
-      glsl::model_source(model, glsl::Language::cpp), model_line(model), glsl::entry_name(model), joined(values), ns);
+      "{}\n}}  // namespace {}\n",
+      model_line(model), model.info().name, ns, ns, glsl::entry_name(model), joined(glsl_names(model)), ns, ns, ns,
+      glsl::model_source(model, glsl::Language::cpp), model_line(model), glsl::entry_name(model), joined(values),
+      cpp_sampler(model), ns);
 }
 
 }  // namespace

@@ -68,6 +68,10 @@ class TableRadial {
   /// ∫ |p_table − p| dy over [0, y_end], p the normalized density of g (by 8-point Gauss-Legendre
   /// per cell).
   double l1_error() const noexcept { return l1_error_; }
+  double width() const noexcept { return width_; }
+  double y_end() const noexcept { return y_end_; }
+  double ds() const noexcept { return ds_; }
+  const std::vector<double>& cumulative() const noexcept { return cumulative_; }
 
  private:
   double y_at(int cell) const noexcept;

@@ -220,6 +220,12 @@ double Sampler::table_error() const noexcept {
   return table ? table->l1_error() : 0;
 }
 
+Sampler::Table Sampler::table() const noexcept {
+  const auto* table = std::get_if<TableRadial>(&impl_->radial);
+  if (!table) return {};
+  return {table->width(), table->y_end(), table->ds(), table->cumulative()};
+}
+
 std::string Sampler::description() const {
   const Impl& s = *impl_;
   std::string text = to_string(s.method);

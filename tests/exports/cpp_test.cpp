@@ -13,6 +13,7 @@
 #include "glsl_support.h"
 #include "specula/exports/exports.h"
 #include "specula/glsl/glsl.h"
+#include "specula/sampling/sampler.h"
 
 namespace specula::exports {
 namespace {
@@ -70,62 +71,110 @@ std::string array_literal(const std::vector<double>& values) {
   return "{" + text + "}";
 }
 
-/// The driver: each export in a namespace of its own (two exports of one model, rv and nh, share
-/// their header's namespace), printing the entry at every parameter set and f at every direction.
-std::string driver(const std::vector<std::string>& headers, const std::vector<Model>& cases) {
-  std::string program = "#include <cmath>\n#include <cstdio>\n";
-  std::string calls;
-  for (std::size_t i = 0; i < headers.size(); ++i) {
-    const std::string ns = cpp_namespace(cases[i]);
-    program += fmt::format("namespace case{} {{\n#include \"case{}.h\"\n}}\n", i, i);
-    const auto sets = parameter_sets(cases[i]);
-    for (std::size_t s = 0; s < sets.size(); ++s) {
-      std::string args;
-      for (std::size_t a = 0; a < sets[s].size(); ++a) args += fmt::format(", {}", glsl::double_literal(sets[s][a]));
-      calls += fmt::format("  for (const auto& d : kDirections) print(case{0}::{1}::{2}({3}{4}));\n", i, ns,
-                           glsl::entry_name(cases[i]), "NLV(case" + std::to_string(i) + "::" + ns + "::Vec3, d)", args);
-    }
-    calls += fmt::format("  for (const auto& d : kDirections) print(case{0}::{1}::f(NLV(case{0}::{1}::Vec3, d)));\n", i, ns);
-  }
+struct Comparison {
+  bool compiled = false;
+  std::string log;
+  double worst = 0;  ///< the largest |cpp - library| / (|library| + 1e-12 column peak) of any value
+  std::string worst_case;
+};
+
+/// What a driver prints for each model, and what the library says it should: `columns` numbers a
+/// line, compared column by column.
+struct Probe {
+  std::size_t columns;
+  /// The driver's statements for model `i` (its header in namespace case<i>::<ns>), printing lines.
+  std::string (*calls)(std::size_t i, const std::string& ns, const Model& model);
+  /// The library's numbers for the same lines, in order.
+  std::vector<double> (*expected)(const Model& model);
+};
+
+std::string direction_table(const char* name) {
   std::string table;
   for (const auto& d : directions())
     table += "  " + array_literal({d[0].x, d[0].y, d[0].z, d[1].x, d[1].y, d[1].z, d[2].x, d[2].y, d[2].z}) + ",\n";
-  return program + "const double kDirections[][9] = {\n" + table + "};\n" +
+  return fmt::format("const double {}[][9] = {{\n{}}};\n", name, table);
+}
+
+/// The driver: each export in a namespace of its own (two exports of one model, rv and nh, share
+/// their header's namespace), then the probe's statements for each.
+std::string driver(std::size_t count, const std::vector<Model>& cases, const Probe& probe) {
+  std::string program = "#include <cmath>\n#include <cstdio>\n";
+  std::string calls;
+  for (std::size_t i = 0; i < count; ++i) {
+    program += fmt::format("namespace case{} {{\n#include \"case{}.h\"\n}}\n", i, i);
+    calls += probe.calls(i, cpp_namespace(cases[i]), cases[i]);
+  }
+  return program + direction_table("kDirections") +
          "#define NLV(T, d) T(d[0], d[1], d[2]), T(d[3], d[4], d[5]), T(d[6], d[7], d[8])\n"
          "void print(double v) { std::printf(\"%.17g\\n\", v); }\nint main() {\n" +
          calls + "}\n";
 }
 
-/// What the library computes, in the driver's order.
-std::vector<double> library_values(const std::vector<Model>& cases) {
+// ---- the model's value: the entry at every parameter set, f at the exported ones ----
+
+std::string value_calls(std::size_t i, const std::string& ns, const Model& model) {
+  const std::string scope = fmt::format("case{}::{}", i, ns);
+  std::string calls;
+  for (const auto& set : parameter_sets(model)) {
+    std::string args;
+    for (const double value : set) args += ", " + glsl::double_literal(value);
+    calls += fmt::format("  for (const auto& d : kDirections) print({0}::{1}(NLV({0}::Vec3, d){2}));\n", scope,
+                         glsl::entry_name(model), args);
+  }
+  return calls + fmt::format("  for (const auto& d : kDirections) print({0}::f(NLV({0}::Vec3, d)));\n", scope);
+}
+
+std::vector<double> library_values(const Model& model) {
   std::vector<double> values;
   const auto dirs = directions();
-  for (const Model& model : cases) {
-    for (const auto& set : parameter_sets(model)) {
-      ParamValues params;
-      for (std::size_t a = 0; a < set.size(); ++a) params[model.info().params[a].name] = set[a];
-      const bool own = set == std::vector<double>(model.params().begin(), model.params().end());
-      const auto form = model.is_lobe() ? std::optional(model.form()) : std::nullopt;
-      const Model at = own ? model : make_model(model.shared_info(), params, form);
-      for (const auto& d : dirs) values.push_back(at(d[0], d[1], d[2]));
-    }
-    for (const auto& d : dirs) values.push_back(model(d[0], d[1], d[2]));
+  for (const auto& set : parameter_sets(model)) {
+    ParamValues params;
+    for (std::size_t a = 0; a < set.size(); ++a) params[model.info().params[a].name] = set[a];
+    const bool own = set == std::vector<double>(model.params().begin(), model.params().end());
+    const auto form = model.is_lobe() ? std::optional(model.form()) : std::nullopt;
+    const Model at = own ? model : make_model(model.shared_info(), params, form);
+    for (const auto& d : dirs) values.push_back(at(d[0], d[1], d[2]));
+  }
+  for (const auto& d : dirs) values.push_back(model(d[0], d[1], d[2]));
+  return values;
+}
+
+constexpr Probe kValues{1, value_calls, library_values};
+
+// ---- the sampler: sample(wi, u1, u2) and pdf(wi, wo) in the frame N = +z ----
+
+/// wi from a direction triple's L (made to face +z), (u1, u2) from its V, wo its V as it is.
+Vec3 sampler_wi(const std::array<Vec3, 3>& d) { return {d[1].x, d[1].y, std::abs(d[1].z) + 1e-3}; }
+double sampler_u(double x) { return (x + 1) / 2 * (1 - 0x1p-53); }
+
+std::string sampler_calls(std::size_t i, const std::string& ns, const Model&) {
+  return fmt::format(
+      "  for (const auto& d : kDirections) {{\n"
+      "    const {0}::Vec3 wi = {0}::normalize({0}::Vec3(d[3], d[4], std::abs(d[5]) + 1e-3));\n"
+      "    const auto s = {0}::sample(wi, (d[6] + 1) / 2 * (1 - 0x1p-53), (d[7] + 1) / 2 * (1 - 0x1p-53));\n"
+      "    print(s.wo.x); print(s.wo.y); print(s.wo.z); print(s.pdf); print(s.weight);\n"
+      "    print({0}::pdf(wi, {0}::Vec3(d[6], d[7], d[8])));\n  }}\n",
+      fmt::format("case{}::{}", i, ns));
+}
+
+std::vector<double> library_sampler_values(const Model& model) {
+  const sampling::Sampler sampler(model);
+  std::vector<double> values;
+  for (const auto& d : directions()) {
+    const Vec3 wi = normalized(sampler_wi(d));
+    const sampling::Sample s = sampler.sample(wi, sampler_u(d[2].x), sampler_u(d[2].y));
+    for (const double v : {s.wo.x, s.wo.y, s.wo.z, s.pdf, s.weight, sampler.pdf(wi, d[2])}) values.push_back(v);
   }
   return values;
 }
 
-struct Comparison {
-  bool compiled = false;
-  std::string log;
-  double worst = 0;  ///< the largest |cpp - library| / (|library| + 1e-12 peak) of any value
-  std::string worst_case;
-};
+constexpr Probe kSampler{6, sampler_calls, library_sampler_values};
 
-/// Compiles `headers` (the exports of `cases`) into the driver, runs it and compares.
-Comparison compare(const std::vector<std::string>& headers, const std::vector<Model>& cases) {
+/// Compiles `headers` (the exports of `cases`) into the probe's driver, runs it and compares.
+Comparison compare(const std::vector<std::string>& headers, const std::vector<Model>& cases, const Probe& probe) {
   const testing::ScratchDir dir("cpp-export");
   for (std::size_t i = 0; i < headers.size(); ++i) dir.write(fmt::format("case{}.h", i), headers[i]);
-  const auto source = dir.write("driver.cpp", driver(headers, cases));
+  const auto source = dir.write("driver.cpp", driver(headers.size(), cases, probe));
   const auto binary = dir.path() / "driver";
   Comparison result;
   const auto build = testing::run_command(fmt::format("'{}' -std=c++20 -O1 -Wall -Wextra -Wpedantic -Werror -o '{}' '{}'",
@@ -133,24 +182,23 @@ Comparison compare(const std::vector<std::string>& headers, const std::vector<Mo
   result.compiled = build.ok;
   result.log = build.log;
   if (!build.ok) return result;
-  const auto run = testing::run_command("'" + binary.string() + "'");
-  std::istringstream printed(run.log);
-  const std::vector<double> expected = library_values(cases);
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::size_t count = (parameter_sets(cases[i]).size() + 1) * kDirections;
-    double peak = 0;
-    for (std::size_t k = at; k < at + count; ++k) peak = std::max(peak, std::abs(expected[k]));
-    for (std::size_t k = at; k < at + count; ++k) {
+  std::istringstream printed(testing::run_command("'" + binary.string() + "'").log);
+  for (const Model& model : cases) {
+    const std::vector<double> expected = probe.expected(model);
+    std::vector<double> peak(probe.columns, 0.0);
+    for (std::size_t k = 0; k < expected.size(); ++k)
+      peak[k % probe.columns] = std::max(peak[k % probe.columns], std::abs(expected[k]));
+    for (std::size_t k = 0; k < expected.size(); ++k) {
       double value = NAN;
       printed >> value;
-      const double deviation = std::abs(value - expected[k]) / (std::abs(expected[k]) + 1e-12 * peak + 1e-300);
+      const double deviation =
+          std::abs(value - expected[k]) / (std::abs(expected[k]) + 1e-12 * peak[k % probe.columns] + 1e-300);
       if (!(deviation <= result.worst)) {
         result.worst = std::isnan(deviation) ? INFINITY : deviation;
-        result.worst_case = fmt::format("{}: {} against the library's {}", case_name(cases[i]), value, expected[k]);
+        result.worst_case = fmt::format("{} [{} column {}]: {} against the library's {}", case_name(model),
+                                        k / probe.columns, k % probe.columns, value, expected[k]);
       }
     }
-    at += count;
   }
   return result;
 }
@@ -167,10 +215,42 @@ constexpr double kTolerance = 2e-9;
 
 TEST(CppExport, EveryModelsHeaderComputesWhatTheLibraryComputes) {
   const std::vector<Model> cases = testing::export_cases();
-  const Comparison c = compare(headers_of(cases), cases);
+  const Comparison c = compare(headers_of(cases), cases, kValues);
   ASSERT_TRUE(c.compiled) << c.log.substr(0, 4000);
   EXPECT_LE(c.worst, kTolerance) << c.worst_case;
   std::printf("worst relative deviation over %zu models: %.3g (%s)\n", cases.size(), c.worst, c.worst_case.c_str());
+}
+
+// sample() and pdf() run sampling::Sampler's algorithms with its tables: the same directions,
+// densities and weights (the weight carries f, hence the log lobe's k within the series' 1e-9).
+TEST(CppExport, EveryModelsSamplerDrawsWhatTheLibrarysDraws) {
+  const std::vector<Model> cases = testing::export_cases();
+  for (const Model& model : cases) {  // the comparison sees real samples, not only "no sample"
+    const std::vector<double> values = library_sampler_values(model);
+    std::size_t valid = 0;
+    for (std::size_t k = 3; k < values.size(); k += kSampler.columns) valid += values[k] > 0;
+    EXPECT_GT(valid, kDirections / 2) << case_name(model);
+  }
+  const Comparison c = compare(headers_of(cases), cases, kSampler);
+  ASSERT_TRUE(c.compiled) << c.log.substr(0, 4000);
+  EXPECT_LE(c.worst, kTolerance) << c.worst_case;
+  std::printf("worst relative deviation over %zu samplers: %.3g (%s)\n", cases.size(), c.worst, c.worst_case.c_str());
+}
+
+// The sampler's negative control: a table whose cells are 1 % wider, or another cosine share,
+// draws differently.
+TEST(CppExport, ATamperedSamplerDiffers) {
+  const std::vector<Model> cases{make_model("gauss", {{"n", 40}})};
+  const std::string header = headers_of(cases)[0];
+  const std::string share = std::regex_replace(header, std::regex(R"(constexpr double kShare = 0\.1;)"), "constexpr double kShare = 0.2;");
+  const std::string table = std::regex_replace(header, std::regex("constexpr double kWidth = "), "constexpr double kWidth = 1.01 * ");
+  for (const std::string& tampered : {share, table}) {
+    ASSERT_NE(tampered, header);
+    const Comparison c = compare({tampered}, cases, kSampler);
+    ASSERT_TRUE(c.compiled) << c.log;
+    EXPECT_GT(c.worst, 1e-3);
+  }
+  EXPECT_LE(compare({header}, cases, kSampler).worst, kTolerance);
 }
 
 // Negative controls: a header whose k is off by one in n differs; one with a syntax error does
@@ -180,18 +260,18 @@ TEST(CppExport, ATamperedHeaderDiffersAndABrokenOneDoesNotCompile) {
   const std::string header = headers_of(cases)[0];
   const std::string tampered = std::regex_replace(header, std::regex(R"(\(n \+ 2\.0\))"), "(n + 3.0)");
   ASSERT_NE(tampered, header);
-  const Comparison c = compare({tampered}, cases);
+  const Comparison c = compare({tampered}, cases, kValues);
   ASSERT_TRUE(c.compiled) << c.log;
   EXPECT_GT(c.worst, 1e-3);
-  EXPECT_FALSE(compare({std::regex_replace(header, std::regex("return"), "retrun")}, cases).compiled);
-  EXPECT_LE(compare({header}, cases).worst, kTolerance);
+  EXPECT_FALSE(compare({std::regex_replace(header, std::regex("return"), "retrun")}, cases, kValues).compiled);
+  EXPECT_LE(compare({header}, cases, kValues).worst, kTolerance);
 }
 
 TEST(CppExport, AHeaderCompilesAloneAndBesideAnotherModels) {
   const testing::ScratchDir dir("cpp-alone");
   dir.write("log.h", export_model(make_model("log-normalized", {{"n", 50}}), Format::cpp));
   dir.write("ggx.h", export_model(make_model("ggx"), Format::cpp));
-  const auto alone = dir.write("alone.cpp", "#include \"log.h\"\nint main() { return specula_export_log_normalized::f({0, 0, 1}, {0, 0, 1}, {0, 0, 1}) > 0 ? 0 : 1; }\n");
+  const auto alone = dir.write("alone.cpp", "#include \"log.h\"\nint main() { return specula_export_log_normalized::sample({0, 0, 1}, 0.5, 0.5).pdf > 0 ? 0 : 1; }\n");
   const auto both = dir.write("both.cpp", "#include \"log.h\"\n#include \"ggx.h\"\n#include \"log.h\"\n"
                                           "int main() { specula_export_ggx::Vec3 n(0, 0, 1);\n"
                                           "  return specula_export_ggx::f(n, n, n) > 0 && specula_export_log_normalized::f({0, 0, 1}, {0, 0, 1}, {0, 0, 1}) > 0 ? 0 : 1; }\n");

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,16 @@ class Sampler {
   /// A tabulated method's error: the L1 distance between the table's density and the lobe's
   /// normalized density (0 for the exact methods).
   double table_error() const noexcept;
+
+  /// A tabulated method's table, for code that re-creates this sampler (exports::export_model):
+  /// the radial density is piecewise constant in y = −ln cos on cells with edges
+  /// y_j = width·(e^(j·ds) − 1), j < cells, and y_end last; cumulative[j] = P(y < y_j). Empty
+  /// cumulative for the other methods (and where the table found nothing to sample).
+  struct Table {
+    double width = 0, y_end = 0, ds = 0;
+    std::span<const double> cumulative;
+  };
+  Table table() const noexcept;
 
  private:
   struct Impl;

@@ -1,0 +1,14 @@
+#pragma once
+// Private to src/exports: the C++ header's sample() and pdf(), sampling::Sampler's algorithms for
+// the model written out (its tables as arrays).
+#include <string>
+
+#include "specula/models/model.h"
+
+namespace specula::exports {
+
+/// C++ (inside the header's namespace, after f) defining `Sample`, `sample(wi, u1, u2)` and
+/// `pdf(wi, wo)` with sampling::Sampler's conventions and numbers for `model`.
+std::string cpp_sampler(const Model& model);
+
+}  // namespace specula::exports
