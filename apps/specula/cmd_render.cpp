@@ -4,12 +4,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <iostream>
+#include <optional>
 #include <tbb/info.h>
 
 #include "cli.h"
 #include "render_options.h"
 #include "specula/exceptions.h"
 #include "specula/gl/render_gl.h"
+#include "specula/render/environment.h"
 #include "specula/render/image_io.h"
 #include "specula/render/render.h"
 
@@ -26,12 +28,24 @@ struct RenderOptions {
   std::string tone_map = "none";
   std::string exr_pixel = "half";
   std::string backend = "cpu";
+  std::string env;  ///< empty: lit by the lights; "white" or an image file
+  int samples = 64;
+  std::uint64_t seed = 0;
   std::string out;
   bool verbose = false;
 };
 
+/// The white furnace shows the bare model: specular 1, no diffuse or ambient term.
+void use_furnace_material(render::Material& m) {
+  m.diffuse = {0, 0, 0};
+  m.specular = {1, 1, 1};
+  m.ambient = {0, 0, 0};
+}
+
 render::Scene scene_of(const RenderOptions& o) {
   render::Scene scene = render::default_scene(o.model.make());
+  if (!o.env.empty()) scene.lights.clear();
+  if (o.env == "white") use_furnace_material(scene.material);
   if (o.scene != "sphere") {
     scene.spheres.clear();
     scene.triangles = render::load_obj(o.scene);
@@ -71,6 +85,8 @@ render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o,
                            {"diffuse", rgb_text(scene.material.diffuse)},
                            {"specular", rgb_text(scene.material.specular)},
                            {"ambient", rgb_text(scene.material.ambient)}});
+  if (!o.env.empty())
+    meta.insert(meta.end(), {{"environment", o.env}, {"samples", std::to_string(o.samples)}, {"seed", std::to_string(o.seed)}});
   if (!rendered.gl_renderer.empty()) meta.emplace_back("gl-renderer", rendered.gl_renderer);
   if (with_display)
     meta.insert(meta.end(), {{"exposure", io::format_number(o.exposure)}, {"tonemap", o.tone_map}});
@@ -81,7 +97,19 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-Rendered render_on_backend(const RenderOptions& o, const render::Scene& scene, const render::RenderSettings& settings) {
+/// With --env: the uniform white furnace or the probe of the file; none without.
+std::optional<render::Environment> environment_of(const RenderOptions& o) {
+  if (o.env.empty()) return std::nullopt;
+  if (!o.lights.empty()) throw InvalidArgument("--light cannot be combined with --env: the environment is the only light");
+  if (o.backend != "cpu") throw InvalidArgument("--env renders on the cpu backend only");
+  if (o.env == "white") return render::Environment::uniform({1, 1, 1});
+  return render::read_environment(o.env);
+}
+
+Rendered render_on_backend(const RenderOptions& o, const render::Scene& scene,
+                           const std::optional<render::Environment>& environment,
+                           const render::RenderSettings& settings) {
+  if (environment) return {render::render_environment(scene, *environment, settings, {o.samples, o.seed}), ""};
   if (o.backend == "cpu") return {render::render_cpu(scene, settings), ""};
   const gl::Context context;
   gl::Renderer renderer(context);
@@ -93,6 +121,11 @@ std::string backend_text(const Rendered& rendered) {
   return "on GL " + rendered.gl_renderer;
 }
 
+std::string lighting_text(const RenderOptions& o, const render::Scene& scene) {
+  if (!o.env.empty()) return fmt::format("environment {}, {} samples per pixel", o.env, o.samples);
+  return fmt::format("{} light{}", scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
+}
+
 void run_render(const RenderOptions& o) {
   const render::ImageFormat format = render::image_format(o.out);
   if (!std::isfinite(o.exposure)) throw InvalidArgument(fmt::format("--exposure {} is not finite", o.exposure));
@@ -102,9 +135,10 @@ void run_render(const RenderOptions& o) {
   const render::ExrPixel exr_pixel = render::parse_exr_pixel(o.exr_pixel);
   const render::RenderSettings settings = settings_of(o.size);
   const render::Scene scene = scene_of(o);
+  const std::optional<render::Environment> environment = environment_of(o);
 
   const auto start = std::chrono::steady_clock::now();
-  const Rendered rendered = render_on_backend(o, scene, settings);
+  const Rendered rendered = render_on_backend(o, scene, environment, settings);
   const double render_ms = milliseconds_since(start);
   const auto written = std::chrono::steady_clock::now();
   if (format == render::ImageFormat::png)
@@ -112,9 +146,9 @@ void run_render(const RenderOptions& o) {
   else
     render::write_exr(o.out, rendered.image, exr_pixel, metadata_of(scene, o, rendered, false));
   if (o.verbose)
-    std::cerr << fmt::format("specula: rendered {}x{} ({} light{}) in {:.1f} ms {}; wrote {} in {:.1f} ms\n",
-                             settings.width, settings.height, scene.lights.size(), scene.lights.size() == 1 ? "" : "s",
-                             render_ms, backend_text(rendered), o.out, milliseconds_since(written));
+    std::cerr << fmt::format("specula: rendered {}x{} ({}) in {:.1f} ms {}; wrote {} in {:.1f} ms\n", settings.width,
+                             settings.height, lighting_text(o, scene), render_ms, backend_text(rendered), o.out,
+                             milliseconds_since(written));
 }
 
 }  // namespace
@@ -141,6 +175,15 @@ void add_render_command(CLI::App& app) {
                   "cpu, or gl: OpenGL 3.3 through EGL (a GPU if EGL lists one, else Mesa's llvmpipe);\n"
                   "the same image within float rounding; at most 16 spheres and 8 lights")->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
+  auto* env = cmd->add_option("--env", o->env,
+                  "Light the scene by an environment alone (docs/render.md): white (radiance 1 from everywhere:\n"
+                  "the white furnace; the material defaults to specular 1, no diffuse, no ambient) or a\n"
+                  "latitude-longitude FILE.exr or FILE.png (row 0 up +y, the centre column toward -z); no --light");
+  cmd->add_option("--samples", o->samples,
+                  "With --env: sample pairs per pixel (one BRDF + one environment sample, power heuristic),\n"
+                  "[1, 65536], at most 2^40 in the image")->capture_default_str()->needs(env);
+  cmd->add_option("--seed", o->seed, "With --env: the same seed gives the same image, whatever the thread count")
+      ->capture_default_str()->needs(env);
   cmd->add_option("--out,-o", o->out, "Output image: FILE.png (8-bit sRGB) or FILE.exr (linear)")->required();
   cmd->add_flag("--verbose,-v", o->verbose, "Print the render and write times (and the GL renderer) to stderr");
   cmd->footer(
@@ -151,7 +194,9 @@ void add_render_command(CLI::App& app) {
       "  specula render --model phong-normalized -p n=20 --size 800x600 --light dir:1,1,2 \\\n"
       "      --light point:-3,2,4:1,0.9,0.8:30 --tonemap aces --out sphere.png\n"
       "  specula render --model ggx -p alpha=0.2 --scene bunny.obj --exr-pixel float --out bunny.exr\n"
-      "  specula render --model log-normalized -p n=50 --backend gl --size 2048x2048 --verbose --out big.png");
+      "  specula render --model log-normalized -p n=50 --backend gl --size 2048x2048 --verbose --out big.png\n"
+      "  specula render --model ggx --env white --out furnace.exr\n"
+      "  specula render --model ggx -p alpha=0.2 --env probe.exr --samples 256 --seed 7 --out ggx.exr");
   cmd->callback([o] { run_render(*o); });
 }
 

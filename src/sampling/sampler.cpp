@@ -12,6 +12,7 @@
 #include "specula/analysis/albedo.h"
 #include "specula/families/families.h"
 #include "specula/interrupt/interrupt.h"
+#include "specula/sampling/seeds.h"
 
 namespace specula::sampling {
 namespace {
@@ -236,20 +237,9 @@ std::string Sampler::description() const {
   return text;
 }
 
-namespace {
-
-std::uint64_t splitmix(std::uint64_t x) noexcept {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
-
 std::vector<Sample> draw_block(const SampleFunction& sample, const Vec3& wi, std::uint64_t seed, std::size_t block,
                                std::size_t count) {
-  std::mt19937_64 rng(splitmix(splitmix(seed) + block));
+  std::mt19937_64 rng(stream_key(seed, block));
   auto uniform = [&rng] { return double(rng() >> 11) * 0x1p-53; };
   std::vector<Sample> samples(std::min(count, kSeedBlock));
   for (Sample& s : samples) {

@@ -1,14 +1,19 @@
 #pragma once
-// What the render tests share: a scratch directory and small files written into it.
+// What the render tests share: a scratch directory and small files written into it, and the camera
+// ray through a pixel centre worked out by hand.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <set>
+#include <numbers>
 #include <string>
+
+#include "specula/render/scene.h"
 
 namespace specula::testing {
 
@@ -45,5 +50,19 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+inline specula::Vec3 unit(const specula::Vec3& v) { return v * (1 / std::sqrt(dot(v, v))); }
+
+/// The ray through the centre of pixel (x, y) of a width × height image, row 0 at the top.
+inline specula::render::Ray pixel_ray(const specula::render::Camera& c, int x, int y, int width, int height) {
+  const specula::Vec3 w = unit(c.look_at - c.position);
+  const specula::Vec3 u = unit(cross(w, c.up));
+  const specula::Vec3 v = cross(u, w);
+  const double half_height = std::tan(c.vertical_fov_deg * std::numbers::pi / 360);
+  const double half_width = half_height * width / height;
+  const double sx = ((x + 0.5) / width * 2 - 1) * half_width;
+  const double sy = (1 - (y + 0.5) / height * 2) * half_height;
+  return {c.position, unit(w + u * sx + v * sy)};
+}
 
 }  // namespace specula::testing

@@ -18,26 +18,16 @@ namespace specula::render {
 namespace {
 
 using ::testing::HasSubstr;
+using specula::testing::pixel_ray;
 using specula::testing::TempDir;
+using specula::testing::unit;
 
 constexpr double kPi = std::numbers::pi;
 // coef(20) of the log lobe in rv form, by mpmath (tests/reference/normalization.csv).
 constexpr double kLogCoef20 = 4.1927561168511793081;
 
-// The hand-made side: camera rays, the textbook ray/sphere quadratic, the lobes of docs/math.md §2.
-Vec3 unit(const Vec3& v) { return v * (1 / std::sqrt(dot(v, v))); }
-
-Ray pixel_ray(const Camera& c, int x, int y, int width, int height) {
-  const Vec3 w = unit(c.look_at - c.position);
-  const Vec3 u = unit(cross(w, c.up));
-  const Vec3 v = cross(u, w);
-  const double half_height = std::tan(c.vertical_fov_deg * kPi / 360);
-  const double half_width = half_height * width / height;
-  const double sx = ((x + 0.5) / width * 2 - 1) * half_width;
-  const double sy = (1 - (y + 0.5) / height * 2) * half_height;
-  return {c.position, unit(w + u * sx + v * sy)};
-}
-
+// The hand-made side: camera rays (render_support.h), the textbook ray/sphere quadratic, the lobes of
+// docs/math.md §2.
 std::optional<double> sphere_hit(const Ray& ray, const Sphere& s) {
   const Vec3 f = ray.origin - s.centre;
   const double b = 2 * dot(f, ray.direction), c = dot(f, f) - s.radius * s.radius;
