@@ -165,7 +165,7 @@ void run(const LutOptions& o) {
   if (o.format == "png16") return write_png16_lut(o, lut, sweep);
   if (!code) {
     io::Table table = lut_table(lut, sweep);
-    table.meta = {{"model", fmt::format("\"{}\"", o.model.id)}};
+    table.meta = {{"model", o.model.id}};
     return write_output(o.out, o.format == "json" ? io::to_json(table, o.round) : io::to_csv(table, o.round));
   }
   const LutDescription description{command_line(o), describe_model(o), sweep.name,

@@ -28,10 +28,10 @@ std::string header_comment(const analysis::AlbedoLut& lut, const LutDescription&
   const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
   std::string text = fmt::format(
       "// {}\n// Directional albedo E(mu, {}) of {} (mu = cos theta_i) by specula's deterministic cubature\n"
-      "// (>= 8 digits); E_avg = 2 int_0^1 E(mu) mu dmu by adaptive quadrature in mu.\n"
-      "// Grid: mu = {} + {} j, j < {}",
+      "// (>= 8 digits); E_avg = 2 int_0^1 E(mu) mu dmu by adaptive quadrature in s = mu^(1/3).\n"
+      "// Grid: mu = {:.9g} + {:.9g} j, j < {}",
       d.command, d.param.empty() ? "-" : d.param, d.model, mu.first, mu.step, mu.count);
-  if (!d.param.empty()) text += fmt::format("; {} = {} + {} i, i < {}", d.param, p.first, p.step, p.count);
+  if (!d.param.empty()) text += fmt::format("; {} = {:.9g} + {:.9g} i, i < {}", d.param, p.first, p.step, p.count);
   text += fmt::format(".\n// Bilinear interpolation error, max |lookup - cubature| at the cells' centres: {:.3g}", d.error.e);
   if (!lut.e_avg.empty()) text += fmt::format("; E_avg (linear in {}): {:.3g}", d.param.empty() ? "-" : d.param, d.error.e_avg);
   return text + ". Outside the grid the lookup clamps.\n";

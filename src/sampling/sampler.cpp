@@ -110,8 +110,17 @@ struct Sampler::Impl {
   Radial radial;
   double alpha = 0;  ///< GGX visible normals
   double share = 0;  ///< cosine-weighted share
+  /// M+ms (models/compensated.h): M's sampler and the energy table; see base_probability.
+  std::unique_ptr<Sampler> base;
+  std::shared_ptr<const EnergyTable> table;
 
   explicit Impl(const Model& m) : model(m) {
+    if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf())) {
+      base = std::make_unique<Sampler>(*compensated->base);
+      table = compensated->table;
+      method = base->method();
+      return;
+    }
     const families::Family* family = families::family_of(model.info());
     method = family ? family->sampling : Method::tabulated;
     const std::span<const double> p = model.params();
@@ -178,8 +187,23 @@ struct Sampler::Impl {
     return radial_density(log_cos_between(kNormal, h)) / (4 * wo_h);
   }
 
+  /// M+ms: a one-sample mixture of M's sampler, with probability E(μ_i) (the energy f_M reflects),
+  /// and cosine-weighted sampling, with 1 − E(μ_i) (what f_ms, ∝ (1 − E(μ_o)) cos θ_o, reflects):
+  /// each strategy in proportion to the energy of the part it samples.
+  double base_probability(const Vec3& wi) const noexcept { return std::clamp(table->at(wi.z), 0.0, 1.0); }
+
+  Vec3 compensated_sample(const Vec3& wi, double u1, double u2) const noexcept {
+    const double p = base_probability(wi);
+    if (u1 < p) return base->sample(wi, std::min(u1 / p, kBelowOne), u2).wo;
+    return cosine_direction(std::min((u1 - p) / (1 - p), kBelowOne), u2);
+  }
+
   double pdf(const Vec3& wi, const Vec3& wo) const noexcept {
     if (!(wo.z > 0) || !(wi.z > 0)) return 0;
+    if (base) {
+      const double p = base_probability(wi);
+      return p * base->pdf(wi, wo) + (1 - p) * wo.z / kPi;
+    }
     const double lobe = share < 1 ? (1 - share) * strategy_pdf(wi, wo) : 0;
     return lobe + share * wo.z / kPi;
   }
@@ -194,7 +218,9 @@ Sample Sampler::sample(const Vec3& wi, double u1, double u2) const noexcept {
   const Impl& s = *impl_;
   if (!(wi.z > 0)) return {};
   Vec3 wo;
-  if (u1 < s.share) {
+  if (s.base) {
+    wo = s.compensated_sample(wi, u1, u2);
+  } else if (u1 < s.share) {
     wo = cosine_direction(std::min(u1 / s.share, kBelowOne), u2);
   } else {
     const double u = s.share > 0 ? std::min((u1 - s.share) / (1 - s.share), kBelowOne) : u1;
@@ -214,9 +240,10 @@ ValuePdf Sampler::eval_pdf(const Vec3& wi, const Vec3& wo) const noexcept {
 
 const Model& Sampler::model() const noexcept { return impl_->model; }
 Method Sampler::method() const noexcept { return impl_->method; }
-double Sampler::cosine_share() const noexcept { return impl_->share; }
+double Sampler::cosine_share() const noexcept { return impl_->base ? impl_->base->cosine_share() : impl_->share; }
 
 double Sampler::table_error() const noexcept {
+  if (impl_->base) return impl_->base->table_error();
   const auto* table = std::get_if<TableRadial>(&impl_->radial);
   return table ? table->l1_error() : 0;
 }
@@ -229,6 +256,9 @@ Sampler::Table Sampler::table() const noexcept {
 
 std::string Sampler::description() const {
   const Impl& s = *impl_;
+  if (s.base)
+    return fmt::format("{} with probability E(mu_i), else cosine-weighted (the multiple-scattering lobe)",
+                       s.base->description());
   std::string text = to_string(s.method);
   if (s.axis == Axis::reflection) text += " about R";
   if (s.axis == Axis::half_vector) text += " of the half vector about N";

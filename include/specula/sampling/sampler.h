@@ -59,7 +59,8 @@ class Sampler {
   Method method() const noexcept;
   /// What is sampled, e.g. "power-cosine (closed form) about R".
   std::string description() const;
-  /// The share of cosine-weighted samples mixed in (0 for closed-form methods).
+  /// The share of cosine-weighted samples mixed in (0 for closed-form methods). For M+ms it
+  /// depends on ω_i, 1 − E(μ_i) (the base model's share within the rest); this returns M's.
   double cosine_share() const noexcept;
   /// A tabulated method's error: the L1 distance between the table's density and the lobe's
   /// normalized density (0 for the exact methods).
