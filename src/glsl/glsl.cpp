@@ -200,25 +200,27 @@ void add_entry(ShaderSource& src, const Target& target, const Model& model);
 /// M+ms: M's entry, its energy table as a constant array (E at M's bound parameter values) with
 /// the table's lookup, and the entry f_M + f_ms (models/compensated.h).
 void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
-  if (target.language != Language::glsl)
-    throw InvalidArgument(fmt::format("'{}': a compensated model (M+ms) is exported as GLSL only so far (specula glsl)",
+  if (target.language == Language::cpp)
+    throw InvalidArgument(fmt::format("'{}': a compensated model (M+ms) has no C++ header yet (its sample and pdf); "
+                                      "export it as glsl, hlsl, msl or brdf",
                                       model.id()));
   const Model& base = *compensated.base;
   add_entry(src, target, base);
   const EnergyTable& table = *compensated.table;
   const auto lit = [&](double value) { return target.literal(value); };
   const std::string name = entry_name(model), n = std::to_string(EnergyTable::kNodes);
-  std::string values;
-  for (const double e : table.e) values += (values.empty() ? "" : ", ") + lit(e);
+  // The table as a chain of linear pieces (no arrays: the same text in every shading language).
+  const auto& e = table.e;
+  std::string pieces;
+  for (std::size_t j = 0; j + 2 < e.size(); ++j)
+    pieces += fmt::format("  if (t < {}.0) return {} + ({}) * (t - {}.0);\n", j + 1, lit(e[j]), lit(e[j + 1] - e[j]), j);
+  pieces += fmt::format("  return {} + ({}) * (t - {}.0);\n", lit(e[e.size() - 2]), lit(e.back() - e[e.size() - 2]),
+                        e.size() - 2);
   src.add(name + "_energy",
           fmt::format("// E(mu) of {} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
                       "// max interpolation error {:.2g} (specula lut). Kulla & Conty 2017.\n"
-                      "const float {}_E[{}] = float[{}]({});\n"
-                      "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n"
-                      "  int j = int(clamp(floor(t), 0.0, {}.0));\n"
-                      "  return mix({}_E[j], {}_E[j + 1], t - float(j));\n}}",
-                      base.id(), n, n, table.interpolation_error, name, n, n, values, name, n,
-                      EnergyTable::kNodes - 2, name, name));
+                      "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n{}}}",
+                      base.id(), n, n, table.interpolation_error, name, n, pieces));
   const double ms_factor = table.e_avg < 1 ? 1 / (kPi * (1 - table.e_avg)) : 0.0;
   const std::string names = parameter_names(base.info());
   src.add(name, fmt::format("// {}: f = f_{} + (1 - E(N.L))(1 - E(N.V)) / (pi (1 - E_avg)), E_avg = {:.9g}; the table holds E\n"

@@ -27,6 +27,15 @@ inline std::vector<Model> export_cases() {
   return cases;
 }
 
+/// export_cases() and compensated models (M+ms), whose exports are shaders only so far (the C++
+/// header needs their sample and pdf).
+inline std::vector<Model> shader_export_cases() {
+  std::vector<Model> cases = export_cases();
+  cases.push_back(make_model("ggx+ms", {{"alpha", 0.4}}));
+  cases.push_back(make_model("log-normalized+ms", {{"n", 5}}));
+  return cases;
+}
+
 inline std::string case_name(const Model& model) {
   return fmt::format("{} ({})", model.id(), model.is_lobe() ? to_string(model.form()) : "brdf");
 }
