@@ -32,7 +32,8 @@ void add_export_command(CLI::App& app) {
       "Examples:\n"
       "  specula export --model ggx -p alpha=0.2 --format hlsl -o ggx.hlsl\n"
       "  specula export --model log-normalized -p n=50 --format brdf -o log.brdf\n"
-      "  specula export --model 'lobe: c^n' --coef 3.5 --format cpp -o lobe.h");
+      "  specula export --model 'lobe: c^n' --coef 3.5 --format cpp -o lobe.h\n"
+      "  specula export --model ggx+ms -p alpha=0.5 --format cpp -o ggx_ms.h   (compensated: its table baked in)");
   cmd->callback([o] { write_output(o->out, exports::export_model(o->model.make(), exports::parse_format(o->format))); });
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <variant>
 
 #include "sampler_cpp.h"
 #include "specula/exceptions.h"
@@ -87,6 +88,14 @@ std::string brdf_explorer(const Model& model) {
       glsl::entry_name(model), joined(names));
 }
 
+/// What holds at the exported parameters only, where something does: a baked k, an energy table.
+std::string held_at_export(const Model& model) {
+  if (!model.is_lobe() && std::holds_alternative<Compensated>(model.brdf()))
+    return " (the energy table holds E at the exported parameters only)";
+  if (glsl::coef_is_baked(model)) return " (k is baked in at the exported parameters)";
+  return "";
+}
+
 std::string cpp_header(const Model& model) {
   std::vector<std::string> values;
   for (const double v : model.params()) values.push_back(glsl::double_literal(v));
@@ -96,14 +105,15 @@ std::string cpp_header(const Model& model) {
       "// {}: the model in double, as specula's Model computes it, in a header that needs nothing but\n"
       "// <cmath>. N, L, V: unit vectors, L toward the light, V toward the viewer; 0 below the horizon.\n"
       "//   {}::f(N, L, V)   the model at these parameters\n"
-      "//   {}::{}(N, L, V{})   at any\n"
+      "//   {}::{}(N, L, V{})   at any{}\n"
       "//   {}::sample(wi, u1, u2), {}::pdf(wi, wo)   importance sampling, as specula's sampling::Sampler\n"
       "//     (N = +z, wi toward the light, wo toward the viewer; at these parameters)\n"
       "#pragma once\n#include <cmath>\n\nnamespace {} {{\n\n{}"
       "// The model at the exported parameters ({}).\n"
       "inline double f(const Vec3& N, const Vec3& L, const Vec3& V) {{ return {}(N, L, V{}); }}\n\n"
       "{}\n}}  // namespace {}\n",
-      model_line(model), model.info().name, ns, ns, glsl::entry_name(model), joined(glsl_names(model)), ns, ns, ns,
+      model_line(model), model.info().name, ns, ns, glsl::entry_name(model), joined(glsl_names(model)),
+      held_at_export(model), ns, ns, ns,
       glsl::model_source(model, glsl::Language::cpp), model_line(model), glsl::entry_name(model), joined(values),
       cpp_sampler(model), ns);
 }

@@ -289,51 +289,81 @@ std::string strategy(const Model& model, const sampling::Sampler& sampler) {
   return table_radial(sampler.table()) + (about_r ? kAboutReflection : kHalfVector);
 }
 
+// The model's own density and draw: its strategy with the cosine share (a one-sample mixture).
+constexpr const char* kStrategyDensity = R"(inline double model_pdf(const Vec3& wi, const Vec3& wo) {
+  const double lobe = (1 - kShare) * strategy_pdf(wi, wo);
+  return lobe + kShare * wo.z / kPi;
+}
+inline Vec3 model_draw(const Vec3& wi, double u1, double u2) {
+  if (u1 < kShare) return cosine_direction(min(u1 / kShare, kBelowOne), u2);
+  const double u = kShare > 0 ? min((u1 - kShare) / (1 - kShare), kBelowOne) : u1;
+  return strategy_sample(wi, u, u2);
+}
+)";
+
+// Cosine-weighted alone (kShare = 1).
+constexpr const char* kCosineDensity = R"(inline double model_pdf(const Vec3&, const Vec3& wo) { return wo.z / kPi; }
+inline Vec3 model_draw(const Vec3&, double u1, double u2) { return cosine_direction(min(u1, kBelowOne), u2); }
+)";
+
+// M+ms (sampler.cpp's compensated_sample and pdf); M's own model_pdf / model_draw in namespace base.
+constexpr const char* kCompensatedDensity = R"(// M+ms: M's sampler with probability E(mu_i) (the energy f_M reflects), cosine-weighted otherwise.
+inline double base_probability(const Vec3& wi) { return clamp(%ENERGY%(wi.z), 0.0, 1.0); }
+inline double model_pdf(const Vec3& wi, const Vec3& wo) {
+  const double p = base_probability(wi);
+  return p * base::model_pdf(wi, wo) + (1 - p) * wo.z / kPi;
+}
+inline Vec3 model_draw(const Vec3& wi, double u1, double u2) {
+  const double p = base_probability(wi);
+  if (u1 < p) return base::model_draw(wi, min(u1 / p, kBelowOne), u2);
+  return cosine_direction(min((u1 - p) / (1 - p), kBelowOne), u2);
+}
+)";
+
 constexpr const char* kSampleAndPdf = R"(}  // namespace sampling_detail
 
 // The density sample() draws wo with (0 below the horizon).
 inline double pdf(const Vec3& wi, const Vec3& wo) {
-  using namespace sampling_detail;
   if (!(wo.z > 0) || !(wi.z > 0)) return 0;
-  const double lobe = %LOBE_PDF%;
-  return lobe + kShare * wo.z / kPi;
+  return sampling_detail::model_pdf(wi, wo);
 }
 
 // wo for wi (wi.z > 0) from two uniform numbers in [0, 1); pdf = 0 when wo leaves the hemisphere.
 inline Sample sample(const Vec3& wi, double u1, double u2) {
-  using namespace sampling_detail;
   if (!(wi.z > 0)) return {};
-%DRAW%  if (!(wo.z > 0)) return {wo, 0, 0};
+  const Vec3 wo = sampling_detail::model_draw(wi, u1, u2);
+  if (!(wo.z > 0)) return {wo, 0, 0};
   const double f_value = f(Vec3(0, 0, 1), wi, wo), density = pdf(wi, wo);
   if (!(density > 0)) return {wo, 0, 0};
   return {wo, density, f_value * wo.z / density};
 }
 )";
 
-// wo from the cosine share or the model's strategy (a one-sample mixture).
-constexpr const char* kMixtureDraw = R"(  Vec3 wo;
-  if (u1 < kShare) {
-    wo = cosine_direction(min(u1 / kShare, kBelowOne), u2);
-  } else {
-    const double u = kShare > 0 ? min((u1 - kShare) / (1 - kShare), kBelowOne) : u1;
-    wo = strategy_sample(wi, u, u2);
-  }
-)";
-
 std::string replaced(std::string text, std::string_view key, std::string_view value) {
   return text.replace(text.find(key), key.size(), value);
+}
+
+/// The cosine share, the strategy and model_pdf / model_draw of a model sampled by its method.
+std::string model_density(const Model& model) {
+  const sampling::Sampler sampler(model);
+  const double share = sampler.cosine_share();
+  return fmt::format("// {}; the cosine-weighted share mixed in:\nconstexpr double kShare = {};\n{}{}",
+                     sampler.description(), lit(share), strategy(model, sampler),
+                     share < 1 ? kStrategyDensity : kCosineDensity);
+}
+
+/// M+ms: M's model_pdf / model_draw in namespace base, and the mixture with cosine sampling.
+std::string compensated_density(const Model& model, const Compensated& compensated) {
+  return fmt::format("namespace base {{  // {}\n{}}}  // namespace base\n{}", compensated.base->id(),
+                     model_density(*compensated.base),
+                     replaced(kCompensatedDensity, "%ENERGY%", glsl::entry_name(model) + "_energy"));
 }
 
 }  // namespace
 
 std::string cpp_sampler(const Model& model) {
-  const sampling::Sampler sampler(model);
-  const double share = sampler.cosine_share();
-  const bool lobe = share < 1;
-  std::string tail = replaced(kSampleAndPdf, "%LOBE_PDF%", lobe ? "(1 - kShare) * strategy_pdf(wi, wo)" : "0.0");
-  tail = replaced(tail, "%DRAW%", lobe ? kMixtureDraw : "  const Vec3 wo = cosine_direction(min(u1, kBelowOne), u2);\n");
-  return fmt::format("{}// {}; the cosine-weighted share mixed in:\nconstexpr double kShare = {};\n{}{}", kCommon,
-                     sampler.description(), lit(share), strategy(model, sampler), tail);
+  const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf());
+  return kCommon + (compensated ? compensated_density(model, *compensated) : model_density(model)) + kSampleAndPdf;
 }
 
 }  // namespace specula::exports

@@ -34,7 +34,7 @@ std::string program_lines(const expr::Program& program, FormulaPrinter print) {
 }
 
 std::string coefficient_formula(const expr::Program& coefficient, FormulaPrinter print) {
-  return "(" + print(renamed(coefficient.result(), coefficient)) + ")";
+  return fmt::format("({})", print(renamed(coefficient.result(), coefficient)));
 }
 
 }  // namespace specula::glsl

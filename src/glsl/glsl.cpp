@@ -1,6 +1,7 @@
 #include "specula/glsl/glsl.h"
 
 #include <cctype>
+#include <cfloat>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -197,13 +198,9 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
 
 void add_entry(ShaderSource& src, const Target& target, const Model& model);
 
-/// M+ms: M's entry, its energy table as a constant array (E at M's bound parameter values) with
-/// the table's lookup, and the entry f_M + f_ms (models/compensated.h).
+/// M+ms: M's entry, its energy table as a chain of linear pieces (E at M's bound parameter
+/// values), and the entry f_M + f_ms (models/compensated.h).
 void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
-  if (target.language == Language::cpp)
-    throw InvalidArgument(fmt::format("'{}': a compensated model (M+ms) has no C++ header yet (its sample and pdf); "
-                                      "export it as glsl, hlsl, msl or brdf",
-                                      model.id()));
   const Model& base = *compensated.base;
   add_entry(src, target, base);
   const EnergyTable& table = *compensated.table;
@@ -304,8 +301,10 @@ std::string entry_name(const Model& model) {
 }
 
 std::string float_literal(double value) {
-  if (!std::isfinite(value)) throw InvalidArgument(fmt::format("no GLSL literal for {}", value));
-  std::string text = fmt::format("{:.9g}", static_cast<float>(value));
+  const auto single = static_cast<float>(value);
+  if (!std::isfinite(single))
+    throw InvalidArgument(fmt::format("no GLSL literal for {}: a float holds at most {:.8g}", value, FLT_MAX));
+  std::string text = fmt::format("{:.9g}", single);
   if (text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
 }

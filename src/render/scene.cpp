@@ -190,12 +190,12 @@ std::string to_string(const Light& light) {
                      f(light.colour.r), f(light.colour.g), f(light.colour.b), f(light.intensity));
 }
 
-Scene default_scene(Model model) {
+Scene default_scene(const Model& model) {
   return {.camera = framing(Vec3{}, 1),
           .spheres = {Sphere{}},
           .triangles = {},
           .lights = {Light{}},
-          .material = Material(std::move(model)),
+          .material = Material(model),
           .background = {}};
 }
 

@@ -908,6 +908,9 @@ TEST_F(Cli, ExportWritesEachFormat) {
               HasSubstr("::begin parameters\nfloat n 1 1000 50\n::end parameters\n"));
   EXPECT_THAT(ok({"export", "--model", "lobe: c^n", "-p", "n=8", "--coef", "3.5", "--format", "cpp"}).out,
               HasSubstr("return 3.5 * specula_lobe_c_n_lobe(specula_cos_rv(N, L, V), p_n);"));
+  EXPECT_THAT(ok({"export", "--model", "ggx+ms", "-p", "alpha=0.5", "--format", "cpp"}).out,
+              HasSubstr("return p * base::model_pdf(wi, wo) + (1 - p) * wo.z / kPi;"));
+  EXPECT_THAT(ok({"export", "--model", "lobe: c^n", "--coef", "1e308", "--format", "cpp"}).out, HasSubstr("1e+308 * "));
   const fs::path file = work() / "log.brdf";
   EXPECT_THAT(ok({"export", "--model", "log", "--format", "brdf", "--out", file.string()}).out, IsEmpty());
   EXPECT_EQ(read_file(file).rfind("analytic\n", 0), 0u);
@@ -920,6 +923,10 @@ TEST_F(Cli, ExportBadInput) {
   bad({"export", "--model", "nope", "--format", "cpp"});
   bad({"export", "--model", "ggx", "--form", "nh", "--format", "cpp"});
   bad({"export", "--model", "log", "-p", "n=0", "--format", "hlsl"});
+  // A coefficient a double holds and a float does not: the shading languages refuse it.
+  for (const char* format : {"hlsl", "msl", "brdf"})
+    EXPECT_THAT(bad({"export", "--model", "lobe: c^n", "--coef", "1e308", "--format", format}).err,
+                HasSubstr("a float holds at most 3.4028235e+38"));
   EXPECT_THAT(listing(work()), IsEmpty());
 }
 

@@ -44,10 +44,12 @@ std::vector<std::array<Vec3, 3>> directions() {
 
 /// Parameter sets: the model's own, then values across each parameter's slider (log-spaced where
 /// it spans two decades), and below it where the range allows (n < 1: the log lobe's other series).
-/// Only the model's own where its k is baked in (glsl::coef_is_baked), which holds there alone.
+/// Only the model's own where its k is baked in (glsl::coef_is_baked) or its energy table (M+ms),
+/// which hold there alone.
 std::vector<std::vector<double>> parameter_sets(const Model& model) {
   std::vector<std::vector<double>> sets{{model.params().begin(), model.params().end()}};
-  if (glsl::coef_is_baked(model) || model.params().empty()) return sets;
+  const bool table_baked = !model.is_lobe() && std::holds_alternative<Compensated>(model.brdf());
+  if (glsl::coef_is_baked(model) || table_baked || model.params().empty()) return sets;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit;
   for (std::size_t k = 1; k < kParameterSets; ++k) {
@@ -237,20 +239,33 @@ TEST(CppExport, EveryModelsSamplerDrawsWhatTheLibrarysDraws) {
   std::printf("worst relative deviation over %zu samplers: %.3g (%s)\n", cases.size(), c.worst, c.worst_case.c_str());
 }
 
-// The sampler's negative control: a table whose cells are 1 % wider, or another cosine share,
-// draws differently.
-TEST(CppExport, ATamperedSamplerDiffers) {
-  const std::vector<Model> cases{make_model("gauss", {{"n", 40}})};
+/// The sampler's negative control: the model's header with each (pattern, replacement) applied
+/// compiles and draws or weighs differently; the header itself agrees.
+void expect_tampering_shows(const Model& model, const std::vector<std::pair<std::string, std::string>>& edits) {
+  const std::vector<Model> cases{model};
   const std::string header = headers_of(cases)[0];
-  const std::string share = std::regex_replace(header, std::regex(R"(constexpr double kShare = 0\.1;)"), "constexpr double kShare = 0.2;");
-  const std::string table = std::regex_replace(header, std::regex("constexpr double kWidth = "), "constexpr double kWidth = 1.01 * ");
-  for (const std::string& tampered : {share, table}) {
-    ASSERT_NE(tampered, header);
+  for (const auto& [pattern, replacement] : edits) {
+    const std::string tampered = std::regex_replace(header, std::regex(pattern), replacement);
+    ASSERT_NE(tampered, header) << pattern;
     const Comparison c = compare({tampered}, cases, kSampler);
     ASSERT_TRUE(c.compiled) << c.log;
-    EXPECT_GT(c.worst, 1e-3);
+    EXPECT_GT(c.worst, 1e-3) << pattern;
   }
   EXPECT_LE(compare({header}, cases, kSampler).worst, kTolerance);
+}
+
+// Another cosine share, or a table whose cells are 1 % wider.
+TEST(CppExport, ATamperedSamplerDiffers) {
+  expect_tampering_shows(make_model("gauss", {{"n", 40}}),
+                         {{R"(constexpr double kShare = 0\.1;)", "constexpr double kShare = 0.2;"},
+                          {"constexpr double kWidth = ", "constexpr double kWidth = 1.01 * "}});
+}
+
+// M+ms: M's share 0.9 E(mu_i) in place of E(mu_i), or M's density alone.
+TEST(CppExport, ATamperedCompensatedSamplerDiffers) {
+  expect_tampering_shows(make_model("ggx+ms", {{"alpha", 0.6}}),
+                         {{R"(clamp\(specula_ggx_ms_energy\(wi\.z\))", "clamp(0.9 * specula_ggx_ms_energy(wi.z)"},
+                          {R"(\+ \(1 - p\) \* wo\.z / kPi;)", ";"}});
 }
 
 // Negative controls: a header whose k is off by one in n differs; one with a syntax error does

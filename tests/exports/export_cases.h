@@ -1,7 +1,8 @@
 #pragma once
 // The models every export test walks: each registered model (built-in, and the user-written ones of
-// tests/user_models_environment.cpp) at its defaults, lobes in both forms, and an inline lobe and
-// BRDF; with a C++ name for each and files in a fresh temporary directory.
+// tests/user_models_environment.cpp) at its defaults, lobes in both forms, an inline lobe and BRDF,
+// and compensated models (M+ms) of a BRDF and a lobe; with a C++ name for each and files in a fresh
+// temporary directory.
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -24,13 +25,6 @@ inline std::vector<Model> export_cases() {
   }
   cases.push_back(make_model("lobe: max(0, 1 - n*(1-c)/4)^4", {{"n", 30}}));
   cases.push_back(make_model("brdf: rho/pi * (1 + a*nh^4)", {{"rho", 0.5}, {"a", 0.25}}));
-  return cases;
-}
-
-/// export_cases() and compensated models (M+ms), whose exports are shaders only so far (the C++
-/// header needs their sample and pdf).
-inline std::vector<Model> shader_export_cases() {
-  std::vector<Model> cases = export_cases();
   cases.push_back(make_model("ggx+ms", {{"alpha", 0.4}}));
   cases.push_back(make_model("log-normalized+ms", {{"n", 5}}));
   return cases;

@@ -15,7 +15,7 @@
 namespace specula::exports {
 namespace {
 
-using testing::shader_export_cases, testing::case_name;
+using testing::export_cases, testing::case_name;
 
 // ---- HLSL ---------------------------------------------------------------------------------------
 
@@ -33,7 +33,7 @@ testing::GlslCheck validate_hlsl(const std::string& exported) {
 }
 
 TEST(HlslExport, EveryModelCompilesInGlslangsHlslFrontEnd) {
-  for (const Model& model : shader_export_cases()) {
+  for (const Model& model : export_cases()) {
     const auto check = validate_hlsl(export_model(model, Format::hlsl));
     EXPECT_TRUE(check.ok) << case_name(model) << "\n" << check.log;
   }
@@ -116,7 +116,7 @@ testing::GlslCheck compile_metal(const std::vector<std::string>& exports) {
 
 TEST(MetalExport, EveryModelCompilesAgainstTheMetalShim) {
   std::vector<std::string> exports;
-  for (const Model& model : shader_export_cases()) exports.push_back(export_model(model, Format::msl));
+  for (const Model& model : export_cases()) exports.push_back(export_model(model, Format::msl));
   const auto check = compile_metal(exports);
   EXPECT_TRUE(check.ok) << check.log;
 }
@@ -219,7 +219,7 @@ std::string angle_plot_vertex(const BrdfFile& file) {
 }
 
 TEST(BrdfExplorerExport, EveryModelLoadsAndCompilesInTheTemplates) {
-  for (const Model& model : shader_export_cases()) {
+  for (const Model& model : export_cases()) {
     const BrdfFile file = read_brdf(export_model(model, Format::brdf));
     EXPECT_TRUE(file.ok && file.type == "analytic") << case_name(model);
     ASSERT_EQ(file.sliders.size(), model.params().size()) << case_name(model);

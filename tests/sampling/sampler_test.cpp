@@ -43,14 +43,21 @@ double total_mass(const Radial& radial, double end) {
   return 2 * kPi * quadrature([&](double y) { return radial.density(y) * std::exp(-y); }, 0, end);
 }
 
+/// A power-cosine density with the wrong normalization, (n + 2)/(2π) cos^n.
+struct MisnormalizedPower {
+  double n;
+  double density(double y) const { return (n + 2) / (2 * kPi) * std::exp(-n * y); }
+};
+
 TEST(Radial, DensitiesIntegrateToOne) {
   EXPECT_NEAR(total_mass(PowerRadial(20), 50), 1, 1e-12);
   EXPECT_NEAR(total_mass(PowerRadial(1e4), 0.05), 1, 1e-10);
   EXPECT_NEAR(total_mass(BeckmannRadial(0.3), 20), 1, 1e-12);
   EXPECT_NEAR(total_mass(LogRadial(20), 3 * std::numbers::ln2 / 20), 1, 1e-12);
   EXPECT_NEAR(total_mass(LogRadial(0.01), 3 * std::numbers::ln2 / 0.01), 1, 1e-12);
-  // Negative control: a density of the wrong exponent does not.
-  EXPECT_GT(std::abs(total_mass(PowerRadial(20), 50) * 21 / 23 - 1), 0.05);
+  // Negative control: the same integral of a power-cosine density normalized by (n + 2)/(2π),
+  // the half vector's factor where ω_o's is (n + 1)/(2π), finds its mass (n + 2)/(n + 1).
+  EXPECT_NEAR(total_mass(MisnormalizedPower{20}, 50), 22.0 / 21, 1e-12);
 }
 
 /// The fraction of samples with y ≤ y_q against the density's mass up to y_q.

@@ -68,7 +68,7 @@ bool coef_is_baked(const Model& model);
 std::string entry_name(const Model& model);
 
 /// A float as a GLSL literal that reads back to the same float ("2.0", "0.197253996",
-/// "2.02299907e-09").
+/// "2.02299907e-09"). InvalidArgument for a value no float holds (NaN, ±inf, beyond ±FLT_MAX).
 std::string float_literal(double value);
 
 /// A double as a C++ literal that reads back to the same double ("2.0", "0.19725399658349416").

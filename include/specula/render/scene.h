@@ -95,7 +95,7 @@ struct Scene {
 
 /// One unit sphere at the origin in front of the default camera, one directional light from the
 /// upper left front, and `model` as the specular part of the default material.
-Scene default_scene(Model model);
+Scene default_scene(const Model& model);
 
 /// Throws InvalidArgument naming the first invalid part: a degenerate camera, a field of view
 /// outside (0°, 180°), a sphere radius ≤ 0, a zero light direction, a negative or non-finite
