@@ -152,30 +152,9 @@ namespace {
 
 // ---- drawing -------------------------------------------------------------------------------
 
-std::uint8_t blend(std::uint8_t background, std::uint8_t ink, std::uint8_t coverage) noexcept {
-  return static_cast<std::uint8_t>((background * (255 - coverage) + ink * coverage + 127) / 255);
-}
-
-bool inside(const Rect& r, int x, int y) noexcept {
-  return x >= r.x && x < r.x + r.width && y >= r.y && y < r.y + r.height;
-}
-
 void fill(Srgb8Image& canvas, const Rect& r, Srgb8 colour) {
   for (int y = r.y; y < r.y + r.height; ++y)
     for (int x = r.x; x < r.x + r.width; ++x) canvas.set(x, y, colour);
-}
-
-// Blends `ink` through the mask's coverage, the mask's top left at (x, y), rotated a quarter turn
-// counter-clockwise (reading upward) if `upward`; nothing outside `clip`.
-void draw_mask(Srgb8Image& canvas, const TextMask& mask, int x, int y, bool upward, const Rect& clip, Srgb8 ink) {
-  for (int my = 0; my < mask.height; ++my)
-    for (int mx = 0; mx < mask.width; ++mx) {
-      const std::uint8_t a = mask.at(mx, my);
-      const int cx = upward ? x + my : x + mx, cy = upward ? y + mask.width - 1 - mx : y + my;
-      if (a == 0 || !inside(clip, cx, cy)) continue;
-      const Srgb8 under = canvas.at(cx, cy);
-      canvas.set(cx, cy, {blend(under.r, ink.r, a), blend(under.g, ink.g, a), blend(under.b, ink.b, a)});
-    }
 }
 
 // The layout's font at its text size, and smaller sizes, down to kSmallestShare of it, for text

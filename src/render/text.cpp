@@ -153,4 +153,27 @@ TextMask Font::render(std::string_view utf8) const {
   return mask_of(glyphs, pen, ascender(), line_height());
 }
 
+namespace {
+
+std::uint8_t blend(std::uint8_t background, std::uint8_t ink, std::uint8_t coverage) noexcept {
+  return static_cast<std::uint8_t>((background * (255 - coverage) + ink * coverage + 127) / 255);
+}
+
+bool inside(const Rect& r, int x, int y) noexcept {
+  return x >= r.x && x < r.x + r.width && y >= r.y && y < r.y + r.height;
+}
+
+}  // namespace
+
+void draw_mask(Srgb8Image& canvas, const TextMask& mask, int x, int y, bool upward, const Rect& clip, Srgb8 ink) {
+  for (int my = 0; my < mask.height; ++my)
+    for (int mx = 0; mx < mask.width; ++mx) {
+      const std::uint8_t a = mask.at(mx, my);
+      const int cx = upward ? x + my : x + mx, cy = upward ? y + mask.width - 1 - mx : y + my;
+      if (a == 0 || !inside(clip, cx, cy)) continue;
+      const Srgb8 under = canvas.at(cx, cy);
+      canvas.set(cx, cy, {blend(under.r, ink.r, a), blend(under.g, ink.g, a), blend(under.b, ink.b, a)});
+    }
+}
+
 }  // namespace specula::render

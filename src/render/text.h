@@ -1,12 +1,14 @@
 #pragma once
 // Text for figures (internal to specula_render): one line of UTF-8 set in a TrueType font with
 // FreeType — grey-scale anti-aliasing, hinting and kerning as FreeType does them — as a coverage
-// mask that the caller blends into an image.
+// mask, and its blending into an image.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string_view>
 #include <vector>
+
+#include "specula/render/panel.h"
 
 namespace specula::render {
 
@@ -44,6 +46,10 @@ class Font {
   struct Face;
   std::unique_ptr<Face> face_;
 };
+
+/// Blends `ink` through the mask's coverage, the mask's top left at (x, y), rotated a quarter turn
+/// counter-clockwise (reading upward) if `upward`; nothing outside `clip`.
+void draw_mask(Srgb8Image& canvas, const TextMask& mask, int x, int y, bool upward, const Rect& clip, Srgb8 ink);
 
 /// The code points of `utf8`; each malformed or truncated sequence gives U+FFFD.
 std::vector<char32_t> decode_utf8(std::string_view utf8);

@@ -1,6 +1,7 @@
 // Comparison panels (include/specula/render/panel.h): the layout formula, panels exactly as the
 // display transform codes them, labels inside their cells, heat maps and their shared scale, the
-// viridis approximation and the colour bar; FreeType text (src/render/text.h).
+// viridis approximation and the colour bar; FreeType text (src/render/text.h); the sampling
+// check's labelled heat map (render/heatmap.h).
 #include "specula/render/panel.h"
 
 #include <gmock/gmock.h>
@@ -12,6 +13,7 @@
 #include "../src/render/text.h"
 #include "render_support.h"
 #include "specula/exceptions.h"
+#include "specula/render/heatmap.h"
 
 namespace specula::render {
 namespace {
@@ -372,6 +374,72 @@ TEST(Text, SetsALineOfInkAsWideAsItsAdvances) {
       if (short_text.at(x, y) > 128) lowest_ink = y;
   EXPECT_EQ(lowest_ink, short_text.baseline - 1);
   EXPECT_EQ(font.render("").width, 0);
+}
+
+// ---- the sampling check's heat map ----------------------------------------------------------
+
+/// Two angles on a 4 × 8 grid, every cell 10 except one 40 in the samples' top right; the second
+/// angle's χ² p-value as given (α = 0.005).
+sampling::SamplingCheck two_angle_check(double second_p) {
+  sampling::SamplingCheck check;
+  check.cos_bins = 4;
+  for (const double theta : {0.0, 45.0}) {
+    sampling::AngleCheck a;
+    a.theta_deg = theta;
+    a.alpha = 0.005;
+    a.p_value = theta == 0 ? 0.5 : second_p;
+    a.mean_weight = a.albedo = a.pdf_integral = 1;
+    a.standard_error = 0.01;
+    a.z = 3;
+    a.observed.assign(32, 10);
+    a.expected.assign(32, 10);
+    a.observed[31] = 40;  // cos θ_o row 3 (the top), φ column 7
+    check.angles.push_back(a);
+  }
+  return check;
+}
+
+bool is_ink(Srgb8 p) noexcept { return p.r == p.g && p.g == p.b && p.r < 128; }
+
+TEST(SamplingHeatmap, TitlesLabelsAndMapsWhereTheyBelong) {
+  const sampling::SamplingCheck check = two_angle_check(0.3);
+  const Srgb8Image image = sampling_heatmap(check);
+  const Font font(default_font(), 14);  // 2·scale + 2 at the default scale 6
+  EXPECT_GE(image.width(), font.render("θi = 45°: χ² p = 0.3, passes").width);
+  // The largest count (40) is viridis(1) over one 6 × 6 cell per angle, in the samples' map (left).
+  int brightest = 0, first_map_row = image.height(), ink_above_maps = 0, ink = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const Srgb8 p = image.at(x, y);
+      if (p == viridis_srgb8(1)) {
+        ++brightest;
+        EXPECT_LT(x, image.width() / 2);
+      }
+      if (p == viridis_srgb8(0.25)) first_map_row = std::min(first_map_row, y);
+      ink += is_ink(p);
+    }
+  for (int y = 0; y < first_map_row; ++y)
+    for (int x = 0; x < image.width(); ++x) ink_above_maps += is_ink(image.at(x, y));
+  EXPECT_EQ(brightest, 2 * 36);
+  EXPECT_GT(ink_above_maps, 100);  // the column titles and the first angle's label
+  EXPECT_GT(ink, ink_above_maps + 100);  // and the second angle's label
+}
+
+// Negative control: a failing second angle changes its label alone — every pixel that differs
+// is text on white in both images, none is a map's.
+TEST(SamplingHeatmap, AFailingAngleChangesItsLabelOnly) {
+  const Srgb8Image passing = sampling_heatmap(two_angle_check(0.3)), failing = sampling_heatmap(two_angle_check(1e-9));
+  ASSERT_EQ(passing.width(), failing.width());
+  ASSERT_EQ(passing.height(), failing.height());
+  const auto text_or_white = [](Srgb8 p) { return p.r == p.g && p.g == p.b; };
+  int differing = 0;
+  for (int y = 0; y < passing.height(); ++y)
+    for (int x = 0; x < passing.width(); ++x) {
+      if (passing.at(x, y) == failing.at(x, y)) continue;
+      ++differing;
+      EXPECT_TRUE(text_or_white(passing.at(x, y)) && text_or_white(failing.at(x, y))) << x << ", " << y;
+    }
+  EXPECT_GT(differing, 50);
 }
 
 }  // namespace
