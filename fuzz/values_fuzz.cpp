@@ -8,6 +8,7 @@
 //   - split() cuts at every separator and its parts join back to the input.
 #include <cmath>
 #include <cstdint>
+#include <fmt/format.h>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,7 @@ using namespace specula;
 constexpr std::size_t kMaxValues = 4096;
 
 void check_values(std::string_view spec, const std::vector<double>& values, std::size_t cap) {
-  const std::string quoted = "'" + std::string(spec) + "'";
+  const std::string quoted = fmt::format("'{}'", spec);
   fuzz::require(!values.empty(), "parse_values returned no values for " + quoted);
   fuzz::require(values.size() <= cap, "parse_values returned " + std::to_string(values.size()) +
                                           " values, over the cap of " + std::to_string(cap) + ", for " + quoted);
@@ -51,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   const auto parts = io::split(spec, ',');
   std::string joined;
-  for (std::size_t i = 0; i < parts.size(); ++i) joined += (i ? "," : "") + std::string(parts[i]);
+  for (std::size_t i = 0; i < parts.size(); ++i) joined += fmt::format("{}{}", i ? "," : "", parts[i]);
   fuzz::require(joined == spec, "split(',') parts do not join back to the input");
   return 0;
 }

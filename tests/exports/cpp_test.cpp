@@ -184,7 +184,7 @@ Comparison compare(const std::vector<std::string>& headers, const std::vector<Mo
   result.compiled = build.ok;
   result.log = build.log;
   if (!build.ok) return result;
-  std::istringstream printed(testing::run_command("'" + binary.string() + "'").log);
+  std::istringstream printed(testing::run_command(fmt::format("'{}'", binary.string())).log);
   for (const Model& model : cases) {
     const std::vector<double> expected = probe.expected(model);
     std::vector<double> peak(probe.columns, 0.0);

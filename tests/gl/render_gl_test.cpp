@@ -31,8 +31,8 @@ Renderer& shared_renderer() {
   return renderer;
 }
 
-render::Scene three_light_scene(Model model) {
-  render::Scene scene = render::default_scene(std::move(model));
+render::Scene three_light_scene(const Model& model) {
+  render::Scene scene = render::default_scene(model);
   scene.lights = {render::parse_light("dir:-1,1,1"), render::parse_light("dir:1,0.5,1"),
                   render::parse_light("point:0,3,3")};
   return scene;

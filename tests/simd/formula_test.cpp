@@ -250,7 +250,8 @@ TEST(SimdFormula, OpCheckCatchesAnErrorOfOneUlpMore) {
 
 TEST(SimdFormula, LobeConventionsAndLengths) {
   // c ≤ 0 gives 0, c > 1 counts as 1, NaN stays NaN; any length, the tail included.
-  const Model model = copies_at(20)[5];
+  const std::vector<Model> copies = copies_at(20);
+  const Model& model = copies[5];
   for (const std::size_t length : {0, 1, 7, 255, 256, 257, 600}) {
     std::vector<double> c(length, 2.0), out(length + 1, -7.0);
     for (std::size_t i = 0; i < length; ++i) c[i] = i % 4 == 0 ? -0.5 : (i % 4 == 1 ? NAN : (i % 4 == 2 ? 2.0 : 0.99));
