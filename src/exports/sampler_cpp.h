@@ -8,7 +8,8 @@
 namespace specula::exports {
 
 /// C++ (inside the header's namespace, after f) defining `Sample`, `sample(wi, u1, u2)` and
-/// `pdf(wi, wo)` with sampling::Sampler's conventions and numbers for `model`.
+/// `pdf(wi, wo)` with sampling::Sampler's conventions and numbers for `model`; for M+ms, M's
+/// sampler (in namespace `base`) mixed with cosine-weighted sampling by the energy table.
 std::string cpp_sampler(const Model& model);
 
 }  // namespace specula::exports
