@@ -9,8 +9,6 @@
 namespace specula::render {
 namespace {
 
-constexpr Srgb8 kInk{24, 24, 24};
-
 /// "θi = 45°: χ² p = 0.431, passes", the verdict as `specula check --sampling` prints it.
 std::string angle_label(const sampling::AngleCheck& angle) {
   return fmt::format("θi = {:g}°: χ² p = {:.3g}, {}", angle.theta_deg, angle.p_value,
@@ -22,6 +20,7 @@ std::string angle_label(const sampling::AngleCheck& angle) {
 Srgb8Image sampling_heatmap(const sampling::SamplingCheck& check, int scale) {
   const int rows = check.cos_bins, cols = 2 * check.cos_bins, gap = 2 * scale;
   const int map_w = cols * scale, map_h = rows * scale;
+  const PanelLayout colours;  // the comparison panels' ink and background
   const Font font(default_font(), std::max(11, 2 * scale + 2));
   const TextMask titles[] = {font.render("samples"), font.render("expected (pdf)")};
   std::vector<TextMask> labels;
@@ -35,16 +34,16 @@ Srgb8Image sampling_heatmap(const sampling::SamplingCheck& check, int scale) {
   const int line = font.line_height(), row_h = line + scale / 2 + map_h + gap;
   const int width = std::max(2 * column + 3 * gap, widest_label + 2 * gap);
   const int count = std::max<int>(1, int(check.angles.size()));
-  Srgb8Image image(width, gap + line + gap / 2 + count * row_h, Srgb8{255, 255, 255});
+  Srgb8Image image(width, gap + line + gap / 2 + count * row_h, colours.background);
   const Rect all{0, 0, image.width(), image.height()};
   for (int m = 0; m < 2; ++m)
-    draw_mask(image, titles[m], gap + m * (column + gap) + (column - titles[m].width) / 2, gap, false, all, kInk);
+    draw_mask(image, titles[m], gap + m * (column + gap) + (column - titles[m].width) / 2, gap, false, all, colours.ink);
   for (int a = 0; a < int(check.angles.size()); ++a) {
     const sampling::AngleCheck& angle = check.angles[std::size_t(a)];
     const double top = std::max({1.0, *std::max_element(angle.observed.begin(), angle.observed.end()),
                                  *std::max_element(angle.expected.begin(), angle.expected.end())});
     const int label_y = gap + line + gap / 2 + a * row_h, y0 = label_y + line + scale / 2;
-    draw_mask(image, labels[std::size_t(a)], gap, label_y, false, all, kInk);
+    draw_mask(image, labels[std::size_t(a)], gap, label_y, false, all, colours.ink);
     for (int m = 0; m < 2; ++m) {
       const std::vector<double>& counts = m == 0 ? angle.observed : angle.expected;
       const int x0 = gap + m * (column + gap) + (column - map_w) / 2;
