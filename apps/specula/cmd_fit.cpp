@@ -202,12 +202,12 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--round", o->round, "With --model: round k to this many decimals, [0, 17] (as the paper's table)")
       ->check(CLI::Range(0, 17));
   cmd->add_option("--vars", o->vars, "Variable columns, comma-separated (default: every other column)");
-  cmd->add_option("--ops", o->ops, "Operators: some of + - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos")
+  cmd->add_option("--ops", o->ops, "Operators, comma-separated: some of " + fit::operator_names())
       ->capture_default_str();
   cmd->add_option("--constants", o->constants, "fitted | integer (fitted, then rounded) | none")->capture_default_str();
   cmd->add_option("--max-size", o->search.max_size, "Largest formula, in weighted nodes, [1, 100]")
       ->capture_default_str()->check(CLI::Range(1, fit::OptionRanges::max_size));
-  cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\"")
+  cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\" over the --ops names")
       ->capture_default_str();
   cmd->add_option("--metric", o->metric, "rms | mae | max-abs | mean-relative | r2")->capture_default_str();
   cmd->add_option("--test-fraction", o->search.test_fraction, "Rows held out for the test error, in [0, 1)")

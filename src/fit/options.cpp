@@ -26,19 +26,26 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
   }
 }
 
-std::optional<Op> operator_named(std::string_view name) {
-  if (name == "+") return Op::add;
-  if (name == "-") return Op::sub;
-  if (name == "*") return Op::mul;
-  if (name == "/") return Op::div;
-  if (name == "^") return Op::pow;
-  if (name == "neg") return Op::neg;
-  const auto op = expr::function_named(name);
-  return op;
+// The symbol of an operator ("+", "neg") or a function's call name ("sqrt").
+std::string_view operator_symbol(Op op) {
+  switch (op) {
+    case Op::add: return "+";
+    case Op::sub: return "-";
+    case Op::mul: return "*";
+    case Op::div: return "/";
+    case Op::pow: return "^";
+    case Op::neg: return "neg";
+    default: return expr::function_name(op);
+  }
 }
 
-constexpr std::string_view kOperatorNames =
-    "+ - * / ^ neg pow min max log log2 exp sqrt abs sin cos acos";
+std::optional<Op> operator_named(std::string_view name) {
+  for (std::size_t i = 0; i < expr::kOpCount; ++i) {
+    const auto op = static_cast<Op>(i);
+    if (expr::arity(op) > 0 && operator_symbol(op) == name) return op;
+  }
+  return expr::function_named(name);  // "pow" as well as "^"
+}
 
 }  // namespace
 
@@ -140,10 +147,22 @@ std::vector<Op> parse_operators(std::string_view text) {
     const auto op = operator_named(name);
     if (!op || expr::arity(*op) == 0)
       throw InvalidArgument(
-          fmt::format("unknown operator '{}' (expected some of: {})", name, kOperatorNames));
+          fmt::format("unknown operator '{}' (expected some of: {})", name, operator_names()));
     if (std::find(ops.begin(), ops.end(), *op) == ops.end()) ops.push_back(*op);
   }
   return ops;
+}
+
+std::string operator_names() {
+  std::string names;
+  for (std::size_t i = 0; i < expr::kOpCount; ++i) {
+    const auto op = static_cast<Op>(i);
+    if (expr::arity(op) == 0) continue;
+    if (!names.empty()) names += ' ';
+    names += operator_symbol(op);
+    if (op == Op::pow) names += " pow";
+  }
+  return names;
 }
 
 Choice parse_choice(std::string_view name) {

@@ -69,6 +69,10 @@ class Connection final : public httplib::Stream {
   bool is_writable() const override { return wait(POLLOUT, write_deadline()) == Wait::ready; }
 
   ssize_t read(char* ptr, size_t size) override {
+    // The request is still arriving, so at most an interim answer (100 Continue) has gone out:
+    // the answer's own write clock and byte count start with its first write after this.
+    write_deadline_.reset();
+    written_ = 0;
     while (buffered_ == filled_) {
       if (wait(POLLIN, read_deadline_) != Wait::ready) return -1;
       const ssize_t got = ::recv(fd_, buffer_, sizeof buffer_, MSG_DONTWAIT);

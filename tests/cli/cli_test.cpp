@@ -677,6 +677,27 @@ TEST_F(CliFit, BadOptionsAreOneLineNamingTheProblem) {
   EXPECT_THAT(bad(fit_args(zero, {"--metric", "mean-relative"})).err, HasSubstr("row 1 is 0"));
 }
 
+double asin_curve(double x) { return std::asin(0.2 * x); }
+
+// expm1, log1p and asin, the ops added last, in --ops, --size-weights and --help: every size on
+// the front is positive and within --max-size (a weight table shorter than the op list once
+// printed sizes such as -1269334649 and let larger formulas in).
+TEST_F(CliFit, TheLastOperatorsHaveSizesAndWeights) {
+  const std::string data = data_file("asin.csv", csv_of(asin_curve));
+  for (const char* weights : {"default", "asin=2", "expm1=3,log1p=2,asin=4"}) {
+    std::vector<std::string> extra = small_search("3");
+    extra.insert(extra.end(), {"--ops", "+,*,/,asin,expm1,log1p", "--size-weights", weights,
+                               "--max-size", "12"});
+    const nlohmann::json j = fit_json(data, extra);
+    for (const auto& c : j["front"]) {
+      EXPECT_GE(c["size"].get<int>(), 1) << weights << "\n" << j.dump(2);
+      EXPECT_LE(c["size"].get<int>(), 12) << weights << "\n" << j.dump(2);
+    }
+  }
+  const std::string help = ok({"fit", "--help"}).out;
+  for (const char* op : {"expm1", "log1p", "asin"}) EXPECT_THAT(help, HasSubstr(op));
+}
+
 // Names are checked before the search starts, not after its budget.
 TEST_F(CliFit, BadColumnNamesFailBeforeSearching) {
   const std::string dash = data_file("dash.csv", "a-b,y\n1,2\n2,3\n");

@@ -1,7 +1,10 @@
 // Options of the search: metrics, operator lists, size weights, and the choice of a formula.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "specula/exceptions.h"
 #include "specula/fit/fit.h"
@@ -34,6 +37,38 @@ TEST(Operators, ParseSymbolsAndFunctionNames) {
   EXPECT_EQ(parse_operators("+, -, sin ,exp,+"), (std::vector<Op>{Op::add, Op::sub, Op::sin, Op::exp}));
   EXPECT_THROW(parse_operators("+,tan"), InvalidArgument);
   EXPECT_THROW(parse_operators(""), InvalidArgument);
+}
+
+// Every op expr knows, by every name --ops lists (operator_names() is what --help prints).
+TEST(Operators, EveryOpParsesByTheNameTheHelpLists) {
+  std::vector<Op> parsed;
+  std::string name;
+  for (std::istringstream names(operator_names()); names >> name;) {
+    const auto ops = parse_operators(name);
+    ASSERT_EQ(ops.size(), 1u) << name;
+    parsed.push_back(ops.front());
+  }
+  for (std::size_t i = 0; i < expr::kOpCount; ++i) {
+    const auto op = static_cast<Op>(i);
+    const bool listed = std::find(parsed.begin(), parsed.end(), op) != parsed.end();
+    EXPECT_EQ(listed, expr::arity(op) > 0) << "op " << i;
+  }
+}
+
+// The weight table holds every op: setting one op's weight changes that op alone.
+TEST(SizeWeights, EveryOperatorsWeightIsItsOwn) {
+  std::string name;
+  for (std::istringstream names(operator_names()); names >> name;) {
+    const Op op = parse_operators(name).front();
+    const auto w = SizeWeights::parse(name + "=7");
+    for (std::size_t i = 0; i < expr::kOpCount; ++i) {
+      const auto other = static_cast<Op>(i);
+      EXPECT_EQ(w.of(other), other == op ? 7 : 1) << name << " changed op " << i;
+    }
+  }
+  EXPECT_EQ(SizeWeights().of(Op::asin), 1);
+  EXPECT_EQ(SizeWeights::parse("asin=100").of(Op::asin), 100);
+  EXPECT_THROW(SizeWeights::parse("asin=101"), InvalidArgument);
 }
 
 TEST(SizeWeights, DefaultTuringbotAndOverrides) {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <future>
+#include <string>
 #include <thread>
 
 #include "specula/exceptions.h"
@@ -65,6 +66,42 @@ TEST(Search, GeneticSearchAloneRecoversAFormula) {
   o.enumerate_max_size = 0;
   const Result r = search(d, o);
   EXPECT_LT(r.front.back().train_error, 1e-10) << expr::to_infix(r.front.back().formula);
+}
+
+// Each one-operand op alone recovers itself: y = op(x) is the size-2 formula op(x). Before the
+// weight table was sized from the op enum, expm1, log1p and asin read weights past its end.
+TEST(Search, EveryUnaryOperatorAloneRecoversItself) {
+  for (std::size_t i = 0; i < expr::kOpCount; ++i) {
+    const auto op = static_cast<expr::Op>(i);
+    if (expr::arity(op) != 1) continue;
+    const std::string name = op == expr::Op::neg ? "-" : std::string(expr::function_name(op));
+    const Data d = sampled((name + "(x)").c_str(), 0.05, 0.95, 25);
+    Options o = quick(3);
+    o.operators = {op};
+    o.max_size = 4;
+    const Result r = search(d, o);
+    const auto& best = r.front.back();
+    EXPECT_LT(best.train_error, 1e-12) << name << ": " << expr::to_infix(best.formula);
+    for (const auto& c : r.front) {
+      EXPECT_EQ(c.size, SizeWeights().of(c.formula.nodes())) << name;
+      EXPECT_LE(c.size, 4) << name;
+    }
+  }
+}
+
+// A formula's size is its weighted node count, within --max-size, whatever the weights.
+TEST(Search, SizesFollowTheWeightsOfEveryOperator) {
+  const Data d = sampled("asin(0.5*x) + expm1(x)", 0.05, 0.9, 25);
+  Options o = quick(5);
+  o.operators = {expr::Op::add, expr::Op::mul, expr::Op::asin, expr::Op::expm1, expr::Op::log1p};
+  o.weights = SizeWeights::parse("asin=3,expm1=2,log1p=5");
+  o.max_size = 12;
+  const Result r = search(d, o);
+  ASSERT_FALSE(r.front.empty());
+  for (const auto& c : r.front) {
+    EXPECT_EQ(c.size, o.weights.of(c.formula.nodes())) << expr::to_infix(c.formula);
+    EXPECT_LE(c.size, 12) << expr::to_infix(c.formula);
+  }
 }
 
 TEST(Search, RecoversAPolynomialWithoutConstants) {

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <functional>
@@ -135,6 +136,30 @@ TEST(ServeFit, AJobOnColumnsFindsTheExactFormula) {
   const json& chosen = status["front"][status["chosen"].get<std::size_t>()];
   EXPECT_LT(chosen["train_error"].get<double>(), 1e-9) << chosen.dump(2);
   EXPECT_THAT(chosen["cpp"].get<std::string>(), HasSubstr("inline double fitted_y(double x)"));
+}
+
+// "ops" and "size_weights" take expm1, log1p and asin, the ops added last, and every size on the
+// front is positive and within "max_size" (the weight table once ended before them).
+TEST(ServeFit, TheLastOperatorsHaveSizesAndWeights) {
+  TestServer server;
+  json columns{{"x", json::array()}, {"y", json::array()}};
+  for (int i = 1; i <= 20; ++i) {
+    columns["x"].push_back(0.05 * i);
+    columns["y"].push_back(std::asin(0.05 * i) + std::log1p(0.05 * i));
+  }
+  const std::int64_t id = start(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}},
+                                                {"ops", "+,*,asin,expm1,log1p"},
+                                                {"size_weights", "asin=2,expm1=3,log1p=2"},
+                                                {"max_size", 10},
+                                                {"generations", 3}});
+  const json status = poll(server.port(), id, [](const json&) { return false; });
+  ASSERT_EQ(status["state"], "done") << status.dump(2);
+  ASSERT_FALSE(status["front"].empty());
+  for (const auto& c : status["front"]) {
+    EXPECT_GE(c["size"].get<int>(), 1) << c.dump(2);
+    EXPECT_LE(c["size"].get<int>(), 10) << c.dump(2);
+  }
+  EXPECT_LT(status["front"].back()["train_error"].get<double>(), 1e-9) << status.dump(2);
 }
 
 TEST(ServeFit, RunsAtMostTheLimitOfJobsAtOnce) {

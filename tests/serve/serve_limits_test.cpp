@@ -408,6 +408,35 @@ TEST(ServeBodies, ABodyThatStopsArrivingIs408) {
   EXPECT_EQ(line.read(10s).status, 408);
 }
 
+// With "Expect: 100-continue" the server sends 100 Continue before the body; a body that then stops
+// arriving still gets its 408 (the interim answer once started the answer's write clock, so the
+// 408, due when the read clock ran out, found its write time spent and the connection closed
+// silently).
+TEST(ServeBodies, ABodyThatStopsArrivingAfter100ContinueIs408) {
+  Limits limits;
+  limits.read_seconds = 1;
+  limits.write_seconds = 1;
+  TestServer server(limits);
+  RawConnection c(server.port());
+  const auto start = Clock::now();
+  ASSERT_TRUE(c.send("POST /api/eval HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\nContent-Length: 100\r\n\r\n"));
+  EXPECT_EQ(c.read(10s).status, 100);
+  ASSERT_TRUE(c.send("{\"model\""));
+  const auto r = c.read(10s);
+  EXPECT_EQ(r.status, 408) << r.head << r.body;
+  EXPECT_FALSE(error_of(r.body).is_null()) << r.body;
+  EXPECT_LT(seconds_since(start), 5.0);
+  EXPECT_TRUE(c.closed_within(2s));
+  // Control: the whole body after 100 Continue is answered.
+  RawConnection whole(server.port());
+  const std::string body = R"({"model": "log", "cos": [0.5]})";
+  ASSERT_TRUE(whole.send(fmt::format("POST /api/eval HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\n"
+                                     "Content-Length: {}\r\n\r\n", body.size())));
+  EXPECT_EQ(whole.read(10s).status, 100);
+  ASSERT_TRUE(whole.send(body));
+  EXPECT_EQ(whole.read(10s).status, 200);
+}
+
 TEST(ServeKeepAlive, AnIdleConnectionIsClosedAfterItsTimeAndServesUntilThen) {
   Limits limits;
   limits.idle_seconds = 1;

@@ -138,7 +138,7 @@ class RawConnection {
   };
 
   /// The next answer (its Content-Length bytes of body, or all until the server closes; none for
-  /// the answer to a HEAD), waiting at most `wait` for each piece.
+  /// the answer to a HEAD or an interim 1xx answer), waiting at most `wait` for each piece.
   Response read(std::chrono::milliseconds wait = std::chrono::seconds(60), bool head_request = false) {
     Response r;
     std::size_t head_end;
@@ -148,7 +148,7 @@ class RawConnection {
     pending_.erase(0, head_end + 4);
     r.status = r.head.size() > 12 ? std::atoi(r.head.c_str() + 9) : 0;
     const std::string length = r.header("Content-Length");
-    if (head_request) {
+    if (head_request || r.status / 100 == 1) {  // 1xx (100 Continue) has no body
     } else if (!length.empty()) {
       const std::size_t n = std::stoul(length);
       while (pending_.size() < n)

@@ -27,6 +27,10 @@ enum class Op : std::uint8_t {
   expm1, log1p, asin                              // one operand: e^x − 1 and ln(1 + x) exact near 0
 };
 
+/// How many ops there are: a table indexed by Op has exactly this many entries (`asin` is the last
+/// op; an op added after it moves this count).
+inline constexpr std::size_t kOpCount = static_cast<std::size_t>(Op::asin) + 1;
+
 struct Node {
   Op op = Op::constant;
   std::uint32_t var = 0;  // Op::variable: index into Expression::variables()

@@ -47,11 +47,13 @@ class SizeWeights {
   void set(expr::Op op, int weight);
 
  private:
-  std::array<int, 18> weight_{};
+  std::array<int, expr::kOpCount> weight_{};
 };
 
 /// Parses an operator list such as "+,*,/" or "+,-,*,/,sin,cos,exp,log" (names as in expr).
 std::vector<expr::Op> parse_operators(std::string_view text);
+/// Every name parse_operators() and SizeWeights::parse() take, space-separated: "+ - * / ^ pow …".
+std::string operator_names();
 
 enum class Split { random, last };
 
