@@ -181,7 +181,7 @@ void add_render_command(CLI::App& app) {
                   "latitude-longitude FILE.exr or FILE.png (row 0 up +y, the centre column toward -z); no --light");
   cmd->add_option("--samples", o->samples,
                   "With --env: sample pairs per pixel (one BRDF + one environment sample, power heuristic),\n"
-                  "[1, 65536], at most 2^40 in the image")->capture_default_str()->needs(env);
+                  "[1, 65536], at most 2^26 in the image (1024x1024 at 64; about a minute)")->capture_default_str()->needs(env);
   cmd->add_option("--seed", o->seed, "With --env: the same seed gives the same image, whatever the thread count")
       ->capture_default_str()->needs(env);
   cmd->add_option("--out,-o", o->out, "Output image: FILE.png (8-bit sRGB) or FILE.exr (linear)")->required();

@@ -94,8 +94,9 @@ void check_settings(const Scene& scene, const RenderSettings& size, const Enviro
   const auto pixels = std::uint64_t(std::max(0, size.width)) * std::uint64_t(std::max(0, size.height));
   const std::uint64_t total = pixels * std::uint64_t(settings.samples);
   if (total > kMaxEnvironmentImageSamples)
-    throw InvalidArgument(fmt::format("{}x{} pixels with --samples {} is {} samples, more than the 2^40 an image may take",
-                                      size.width, size.height, settings.samples, total));
+    throw InvalidArgument(fmt::format("{}x{} pixels with --samples {} is {} samples, more than the 2^{} an image may take",
+                                      size.width, size.height, settings.samples, total,
+                                      kMaxEnvironmentImageSamplesLog2));
 }
 
 }  // namespace

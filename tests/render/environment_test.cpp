@@ -360,7 +360,8 @@ TEST(EnvironmentErrors, LightsSampleCountsAndBadMapPixelsAreRefused) {
   EXPECT_THAT(render(default_scene(make_model("ggx")), {4, 4}, 1), HasSubstr("no other lights"));
   EXPECT_THAT(render(bare, {4, 4}, 0), HasSubstr("--samples 0 is outside [1, 65536]"));
   EXPECT_THAT(render(bare, {4, 4}, 65537), HasSubstr("outside"));
-  EXPECT_THAT(render(bare, {16384, 16384}, 4097), HasSubstr("more than the 2^40"));
+  EXPECT_THAT(render(bare, {1024, 1024}, 65), HasSubstr("more than the 2^26"));
+  EXPECT_THAT(render(bare, {256, 256}, 1025), HasSubstr("more than the 2^26"));
   Image map = constant_map(4, 2, {1, 1, 1});
   EXPECT_EQ(error_of([&] { Environment::lat_long(map); }), "no error");  // control
   map.set(3, 1, {1, -1, 1});
