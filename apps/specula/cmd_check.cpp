@@ -18,10 +18,10 @@ namespace {
 // two evaluations; Ctrl-C stops any of them.
 constexpr std::size_t kMaxCases = 1000, kMaxGrazing = 100;
 constexpr int kMaxPairs = 10'000'000;
-// --sampling: at most 20 angles and 5e7 samples over all of them (log-normalized, the slowest
-// built-in sampler, draws and bins about 7e5 a second on a loaded 2-core machine: ~70 s).
+// --sampling: at most 20 angles and 3e7 samples over all of them (log-normalized, the slowest
+// built-in sampler, drew and binned 5e7 in 106 s on a 2-core machine at load average 7).
 constexpr std::size_t kMaxSamplingAngles = 20;
-constexpr std::size_t kMaxSamplingTotal = 50'000'000;
+constexpr std::size_t kMaxSamplingTotal = 30'000'000;
 
 struct CheckCliOptions {
   ModelOptions model;
@@ -88,6 +88,12 @@ std::string sampling_text(const Model& m, const sampling::SamplingCheck& c) {
   out += fmt::format("\n  {:>6} {:>9} {:>10} {:>5} {:>9} {:>8} {:>10} {:>12} {:>10} {:>12} {:>9}  {}\n", "θ_i", "samples",
                      "χ²", "dof", "p", "α_θ", "∫pdf", "mean weight", "± se", "albedo", "max wt", "verdict");
   for (const sampling::AngleCheck& a : c.angles) {
+    if (a.negative_samples) {
+      out += fmt::format("  {:>5}° FAILS: f < 0 at {} samples (min f = {:.6g}): the model is negative, which no "
+                         "sampler can follow; the check stops here\n",
+                         a.theta_deg, a.negative_samples, a.min_f);
+      continue;
+    }
     std::string problems;
     if (!a.chi2_passes()) problems += " χ²";
     if (!a.albedo_agrees()) problems += fmt::format(" mean weight ≠ albedo ({:.2f} se)", std::abs(a.mean_weight - a.albedo) / a.standard_error);
@@ -110,10 +116,10 @@ std::string sampling_json(const Model& m, const sampling::SamplingCheck& c) {
     out += fmt::format("{}\n  {{\"theta_deg\": {}, \"samples\": {}, \"chi2\": {}, \"dof\": {}, \"p_value\": {}, "
                        "\"alpha\": {}, \"pdf_integral\": {}, \"mean_weight\": {}, \"standard_error\": {}, "
                        "\"albedo\": {}, \"max_weight\": {}, \"outside\": {}, \"weight_mismatches\": {}, "
-                       "\"uncovered\": {}, \"in_empty_cells\": {}, \"passes\": {}}}",
+                       "\"uncovered\": {}, \"in_empty_cells\": {}, \"negative\": {}, \"min_f\": {}, \"passes\": {}}}",
                        i ? "," : "", a.theta_deg, a.valid_samples, a.chi2, a.dof, a.p_value, a.alpha, a.pdf_integral,
                        a.mean_weight, a.standard_error, a.albedo, a.max_weight, a.outside, a.weight_mismatches,
-                       a.uncovered_nodes, a.unexpected_samples, a.passes());
+                       a.uncovered_nodes, a.unexpected_samples, a.negative_samples, a.min_f, a.passes());
   }
   return out + "\n]}\n";
 }
@@ -161,7 +167,7 @@ void add_check_command(CLI::App& app) {
                 "the mean weight against the albedo, at each --theta-i (docs/sampling.md)");
   cmd->add_option("--theta-i", o->sampling_theta, "--sampling: incidence angles in degrees, [0, 90), at most 20")
       ->capture_default_str();
-  cmd->add_option("--samples", o->sampling_options.samples, "--sampling: samples per angle, [1e3, 5e7], at most 5e7 over all angles (about a minute)")
+  cmd->add_option("--samples", o->sampling_options.samples, "--sampling: samples per angle, [1e3, 3e7], at most 3e7 over all angles (about a minute)")
       ->capture_default_str()->check(CLI::Range(std::size_t{1000}, kMaxSamplingTotal));
   cmd->add_option("--bins", o->sampling_options.cos_bins,
                   "--sampling: grid cells in cos θ_o (φ_o has twice as many), [4, 128]")
