@@ -56,7 +56,10 @@ std::vector<std::string> model_ids(const std::string& list) {
 // `id` with the given parameters it has and the form if it is a lobe; `used` collects the names.
 Model model_with(const std::string& id, const ParamValues& values, const std::optional<Form>& form,
                  std::set<std::string>& used) {
-  const ModelInfo& info = *find_model(id);
+  // An inline model ("lobe: c^n") is in no catalogue: its parameters are its formula's names.
+  const ModelInfo* catalogued = find_model(id);
+  const std::optional<Model> inline_model = catalogued ? std::nullopt : std::optional(make_model(id));
+  const ModelInfo& info = catalogued ? *catalogued : inline_model->info();
   ParamValues own;
   for (const auto& [name, value] : values)
     if (info.find_param(name)) {

@@ -1,6 +1,7 @@
 // User-defined models through the CLI: --models FILE before or after the command, inline models
 // wherever a model id goes, the built-in's numbers from a user's copy, and bad model files as one
 // line naming FILE:LINE (and the column), exit 2, no output.
+#include <filesystem>
 #include <fstream>
 
 #include "cli_fixture.h"
@@ -45,6 +46,16 @@ TEST_F(Cli, AnInlineLobeWorksWhereAModelIdDoes) {
   EXPECT_NEAR(k, 1 / (2 * 3.14159265358979323846 * (1 / 12.5 - 1 / 187.5)), 1e-12 * k);
   const Result brdf = ok({"check", "--model", "brdf: rho/pi", "-p", "rho=0.5"});
   EXPECT_THAT(brdf.out, HasSubstr("energy conservation         holds"));
+}
+
+// compare took an inline model's catalogue entry, which does not exist: a segmentation fault.
+TEST_F(Cli, CompareTakesInlineModelsAsPanelsAndAsReference) {
+  const std::string png = (work() / "c.png").string();
+  ok({"compare", "--models", "lobe: c^n,phong", "-p", "n=20", "--size", "16x16", "-o", png, "-q"});
+  EXPECT_TRUE(std::filesystem::exists(png));
+  ok({"compare", "--models", "phong", "--diff", "lobe: c^n", "-p", "n=20", "--size", "16x16", "-o", png, "-q"});
+  EXPECT_THAT(bad({"compare", "--models", "lobe: c^n", "-p", "m=2", "--size", "16x16", "-o", png}).err,
+              HasSubstr("no model in this comparison has a parameter 'm'"));
 }
 
 TEST_F(Cli, ErrorTakesAUsersLobeAsModelAndAsReference) {
