@@ -32,8 +32,9 @@ bench: build
 	@build/release/bench/specula_render_bench
 
 # The hostile test (bench/hostile): the release CLI and `specula serve` on loopback against
-# malformed input, kills, signals and slow or heavy clients; bounded (about 2 minutes), exit 1 on
-# any fault. docs/robustness.md states the rules it checks.
+# malformed input, user models (files, inline, definition objects), every export compiled, M+ms of
+# every model, kills, signals and slow or heavy clients; bounded (about 8 minutes on 2 cores), exit 1
+# on any fault. docs/robustness.md states the rules it checks.
 hostile: build
 	@python3 bench/hostile/run.py --specula build/release/specula
 

@@ -163,6 +163,12 @@ class Cli:
         self.fixture_dir = os.path.join(root, "fixtures")
         self.fixtures = make_fixtures(self.fixture_dir, rng)
 
+    def short_path(self, arg):
+        """arg with the run's temporary fixture and model folders as FIXTURES/ and MODELS/."""
+        arg = arg.replace(self.fixture_dir + "/", "FIXTURES/")
+        model_dir = getattr(self, "model_dir", None)  # (set by model_cases.prepare)
+        return arg.replace(model_dir + "/", "MODELS/") if model_dir else arg
+
     def workdir(self):
         return tempfile.mkdtemp(dir=self.works)
 
@@ -178,7 +184,7 @@ class Cli:
     def judge(self, g, r, work, cap, expect=(0, 1, 2), outputs=(), ok_codes=(0,), sent=None):
         """Counts r in g and records what went wrong; returns the top-level names left in work."""
         g.count(r.label(), r.wall, r.rss_mib)
-        what = "specula " + shown_argv(r.argv[1:]).replace(self.fixture_dir + "/", "FIXTURES/")
+        what = "specula " + shown_argv([self.short_path(a) for a in r.argv[1:]])
         if r.wall >= g.worst_wall:
             g.note = f"slowest: {what[:110]} ({r.wall:.1f} s)"
         if r.code == 2 and r.wall > SLOW_REFUSAL_S:
@@ -220,7 +226,8 @@ RANDOM_ALPHABET = "abcxyz0123456789.:,@-+eE \t\n\r\x1b[]{}\"'\\/%$é\udcff"
 ALIASES = {"-m": "--model", "-p": "--param", "-o": "--out", "-c": "--cos", "-t": "--theta", "-r": "--reference"}
 UNKNOWN = ["--bogus", "-Z", "--model-", "---", "extra", "--=", "-" + "x" * 100, "--help=x", "-", "--"]
 COUNTS = {"eval": 40, "normalize": 30, "albedo": 25, "check": 25, "error": 25, "fit": 30, "render": 30,
-          "compare": 15, "glsl": 20, "export": 20, "models": 10, "bench": 4}
+          "compare": 15, "glsl": 20, "export": 20, "models": 10, "bench": 4,
+          "lut": 12, "sample": 10, "check --sampling": 12, "render --env": 10}
 CAPS = {"bench": 60, "serve": 5}
 
 
@@ -273,10 +280,10 @@ def mutated(rng, base, options, flags):
 
 def malformed_cases(rng, fixtures, scale):
     specs = pools.commands(fixtures)
-    cases = [[name, "--help"] for name in list(specs) + ["report", "serve"]]
-    for name, count in COUNTS.items():
+    cases = [[name, "--help"] for name in list(specs) + ["report", "serve"] if " " not in name]
+    for name, count in COUNTS.items():  # ("check --sampling" is check with --sampling in its base)
         base, options, flags = specs[name]
-        cases += [[name] + mutated(rng, base, options, flags) for _ in range(max(1, round(count * scale)))]
+        cases += [name.split()[:1] + mutated(rng, base, options, flags) for _ in range(max(1, round(count * scale)))]
     cases += [["report"] + c for c in pools.REPORT_CASES]
     cases += [["serve"] + c for c in pools.SERVE_CASES]
     cases += [[], ["nope"], ["--bogus"], ["eval\n"], ["\udcff"], ["-" * 3000]]

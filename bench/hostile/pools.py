@@ -15,7 +15,11 @@ COMMON = [
 ]
 
 MODELS = ["log", "ggx", "nope", "LOG", "log ", " log", "log\n", "log\r\x1b[2J", "", "phong,ggx",
-          "../log", "log-normalized\udcff", "a" * 300, "lambert", "cook-torrance-1982"]
+          "../log", "log-normalized\udcff", "a" * 300, "lambert", "cook-torrance-1982",
+          # inline models, M+ms, model-file ids (valid only with --models)
+          "lobe: c^n", "brdf: rho/pi", "lobe: c\n^n", "lobe: ", "brdf:", "lobe: c^", "lobe: k*c", "brdf: nl/0",
+          "lobe: " + "c*" * 2048 + "c", "lobe:c", "LOBE: c", "brdf: sqrt(-1)", "phong+ms",
+          "nope+ms", "ggx+ms+ms", "+ms", "my-log", "hostile-0"]
 PARAMS = ["n=nan", "n=inf", "n=-1", "n=0", "n=1e308", "n=1e9", "n=1e10", "n=", "=1", "n", "n=1=2",
           "n==1", "alpha=0", "alpha=nan", "alpha=2", "f0=-1", "nope=1", "n=1e-400", "n=1:7", "n=\n1",
           "n=0x10", "rho=1e308", "n=1e-3", "m=0"]
@@ -43,6 +47,10 @@ LIGHTS = ["dir:", "dir:0,0,0", "dir:nan,nan,nan", "point:0,0,0", "point:0,0,1e30
 COLOURS = ["1,1", "nan,0,0", "-1,-1,-1", "1e308,1e308,1e308", "1,1,1,1", "", "x", "inf,inf,inf"]
 
 MODEL_OPTS = {"-m": MODELS, "--model": MODELS, "-p": PARAMS, "--param": PARAMS, "--form": FORMS}
+MU = ["0:1@5", "1e-10", "0.5:1@1025", "1,0.5", "nan", "2", "0.5,0.5", "", "0.25:1@4", "1e-9", "-1", "1:1e7"]
+SWEEPS = ["alpha=0.05:1@1025", "alpha=", "nope=0:1@3", "alpha=1:0.05@3", "alpha=nan", "alpha=0.1,0.1", "=1",
+          "alpha=0.05:1@4", "f0=0:1@3", "alpha=0:1@3", "alpha", "alpha=1e308"]
+SAMPLING_COUNTS = ["999", "100000001", "0", "-1", "nan", "1e308", "x", "1000", "18446744073709551616"]
 OUTPUT_OPTS = {"--format": FORMATS, "--round": ROUNDS, "-o": OUTS, "--out": OUTS}
 
 
@@ -54,10 +62,33 @@ def _merge(*dicts):
 
 
 def commands(fixtures):
-    """{command: (base argv, {option: pool}, [flags])}; base argvs are cheap valid invocations."""
+    """{command: (base argv, {option: pool}, [flags])}; base argvs are cheap valid invocations.
+    A key "check --sampling" is the command check with --sampling in its base."""
     csv = [fixtures.get(k, k) for k in ("D.csv", "ragged.csv", "text.csv", "empty.csv", "nan.csv")]
     csv += ["", "/dev/null", "nonexistent.csv"]
-    return {
+    model_files = [fixtures.get(k, k) for k in ("copies.toml", "hostile.toml", "heavy.toml")]
+    model_files += ["", "/dev/zero", "nonexistent.toml", fixtures.get("a_directory", ".")]
+    with_files = dict(MODEL_OPTS, **{"--models": model_files})
+    specs = {
+        "lut": (["-m", "ggx", "--mu", "0.5,1", "-q"],
+                _merge(with_files, {"--sweep": SWEEPS, "--mu": MU, "--round": ROUNDS, "-o": OUTS + IMAGES,
+                                    "--out": OUTS + IMAGES,
+                                    "--format": ["csv", "json", "exr", "png16", "cpp", "glsl", "x", "", "PNG16"]}),
+                ["--average", "--quiet"]),
+        "sample": (["-m", "ggx", "--count", "10"],
+                   _merge(with_files, {"--coef": NUMBERS, "--theta-i": NUMBERS + ["90", "89.999999", "0:10"],
+                                       "--count": ["0", "1000001", "-1", "nan", "x", "1"], "-n": ["0", "-1"],
+                                       "--seed": SEEDS, "-o": OUTS, "--out": OUTS}), []),
+        "check --sampling": (["--sampling", "-m", "ggx", "--samples", "1000", "--theta-i", "30"],
+                             _merge(with_files, {"--coef": NUMBERS, "--samples": SAMPLING_COUNTS,
+                                                 "--theta-i": ANGLES + ["0:89@21", "0,30,60", "90"],
+                                                 "--bins": ["3", "129", "0", "nan", "x", "4", "128"],
+                                                 "-o": IMAGES, "--out": IMAGES}), ["--json"]),
+        "render --env": (["-m", "ggx", "--env", "white", "--samples", "2", "--size", "16x16", "-o", "y.exr"],
+                         _merge(with_files, {"--env": ["white", "", "nope.exr", "/dev/zero", "WHITE", "black",
+                                                       fixtures.get("binary.csv", "x.png")],
+                                             "--samples": ["0", "65537", "-1", "nan", "x", "1"], "--seed": SEEDS,
+                                             "--size": SIZES, "--light": LIGHTS, "-o": IMAGES, "--out": IMAGES}), []),
         "models": ([], {"-o": OUTS, "--out": OUTS}, ["--json"]),
         "eval": (["-m", "log", "--cos", "0:1@5"],
                  _merge(MODEL_OPTS, OUTPUT_OPTS, {"--coef": NUMBERS, "--cos": COSINES, "-c": COSINES,
@@ -129,6 +160,11 @@ def commands(fixtures):
         "bench": (["--quick"], {"--n": ["0", "1e-4", "1e10", "nan", "inf", "-1", "x"],
                                 "--format": ["table", "json", "x", ""]}, []),
     }
+    for _, options, _ in specs.values():  # a model file wherever a model is taken (--models may follow the command)
+        if "-m" in options or "--models" in options:
+            options.setdefault("--models", model_files)
+    specs["models"][1]["--models"] = model_files
+    return specs
 
 
 # Commands whose valid runs take minutes or never end: only invocations that fail parsing.

@@ -84,6 +84,7 @@ class Summary:
         self.server_exit_s = None
         self.elapsed_s = 0.0
         self.notes = []
+        self.measures = {}  # name: text or {what: seconds}, e.g. the worst answer per route to definition objects
         self.started = time.monotonic()
 
     def group(self, name):
@@ -135,6 +136,10 @@ class Summary:
                      + (f"{lat[0]:.3f} s (during {lat[1]})" if lat else "-"))
         lines.append(f"  {'server exit after SIGTERM':<50} "
                      + (f"{self.server_exit_s:.3f} s" if self.server_exit_s is not None else "-"))
+        for name, value in self.measures.items():
+            if isinstance(value, dict):
+                value = ", ".join(f"{k} {v:.1f} s" if isinstance(v, float) else f"{k} {v}" for k, v in value.items())
+            lines.append(f"  {name:<50} {value}")
         lines.append(f"  {'faults in all':<50} {sum(t.values())}")
         lines.append(f"  {'run time':<50} {self.elapsed_s:.0f} s")
         return "\n".join(lines)
@@ -166,5 +171,6 @@ class Summary:
             "server_exit_s": None if self.server_exit_s is None else round(self.server_exit_s, 4),
             "elapsed_s": round(self.elapsed_s, 1),
             "notes": self.notes,
+            "measures": self.measures,
             "faults": [{"group": n, "kind": k, "what": t} for n, k, t in self.faults()],
         }, indent=2, ensure_ascii=True)
