@@ -1,9 +1,10 @@
 #pragma once
-// Small text helpers the tests share: whole files, lines, CSV cells.
+// Small text helpers the tests share: whole files, lines, CSV cells, words in comments.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace specula::testing {
@@ -27,6 +28,18 @@ inline std::vector<std::string> cells_of(const std::string& line) {
   std::istringstream in(line);
   for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
   return cells;
+}
+
+/// Whether every line of generated `source` that holds `word` holds it in a comment: after "//",
+/// or, where `hash_comments` (a .brdf file's header), on a line that starts with "# ".
+inline bool only_in_comments(const std::string& source, std::string_view word, bool hash_comments = false) {
+  for (const std::string& line : lines_of(source)) {
+    const std::size_t at = line.find(word);
+    if (at == std::string::npos) continue;
+    const bool after_slashes = line.find("//") < at;
+    if (!after_slashes && !(hash_comments && line.starts_with("# "))) return false;
+  }
+  return true;
 }
 
 }  // namespace specula::testing

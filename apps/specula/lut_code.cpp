@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
 
 namespace specula::cli {
@@ -30,7 +31,8 @@ std::string header_comment(const analysis::AlbedoLut& lut, const LutDescription&
       "// {}\n// Directional albedo E(mu, {}) of {} (mu = cos theta_i) by specula's deterministic cubature\n"
       "// (>= 8 digits); E_avg = 2 int_0^1 E(mu) mu dmu by adaptive quadrature in s = mu^(1/3).\n"
       "// Grid: mu = {:.9g} + {:.9g} j, j < {}",
-      d.command, d.param.empty() ? "-" : d.param, d.model, mu.first, mu.step, mu.count);
+      expr::comment_text(d.command), d.param.empty() ? "-" : d.param, expr::comment_text(d.model), mu.first, mu.step,
+      mu.count);
   if (!d.param.empty()) text += fmt::format("; {} = {:.9g} + {:.9g} i, i < {}", d.param, p.first, p.step, p.count);
   text += fmt::format(".\n// Bilinear interpolation error, max |lookup - cubature| at the cells' centres: {:.3g}", d.error.e);
   if (!lut.e_avg.empty()) text += fmt::format("; E_avg (linear in {}): {:.3g}", d.param.empty() ? "-" : d.param, d.error.e_avg);

@@ -9,17 +9,18 @@
 
 #include "sampler_cpp.h"
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
 #include "specula/queries/queries.h"
 
 namespace specula::exports {
 namespace {
 
-/// "model=ggx alpha=0.3 f0=1": the model and its parameters (queries::model_meta).
+/// "model=ggx alpha=0.3 f0=1": the model and its parameters (queries::model_meta), for a comment.
 std::string model_line(const Model& model) {
   std::string line;
   for (const auto& [name, value] : queries::model_meta(model)) line += fmt::format(" {}={}", name, value);
-  return line.substr(1);
+  return expr::comment_text(line.substr(1));
 }
 
 /// The model's parameter names as its GLSL spells them (p_NAME for a user's model).
@@ -84,8 +85,8 @@ std::string brdf_explorer(const Model& model) {
       "  if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return vec3(0.0);\n"
       "  return vec3({}(N, L, V{}));\n}}\n"
       "::end shader\n",
-      model_line(model), model.info().name, coefficient_note(model), sliders, glsl::model_glsl(model),
-      glsl::entry_name(model), joined(names));
+      model_line(model), expr::comment_text(model.info().name), coefficient_note(model), sliders,
+      glsl::model_glsl(model), glsl::entry_name(model), joined(names));
 }
 
 /// What holds at the exported parameters only, where something does: a baked k, an energy table.
@@ -112,8 +113,8 @@ std::string cpp_header(const Model& model) {
       "// The model at the exported parameters ({}).\n"
       "inline double f(const Vec3& N, const Vec3& L, const Vec3& V) {{ return {}(N, L, V{}); }}\n\n"
       "{}\n}}  // namespace {}\n",
-      model_line(model), model.info().name, ns, ns, glsl::entry_name(model), joined(glsl_names(model)),
-      held_at_export(model), ns, ns, ns,
+      model_line(model), expr::comment_text(model.info().name), ns, ns, glsl::entry_name(model),
+      joined(glsl_names(model)), held_at_export(model), ns, ns, ns,
       glsl::model_source(model, glsl::Language::cpp), model_line(model), glsl::entry_name(model), joined(values),
       cpp_sampler(model), ns);
 }

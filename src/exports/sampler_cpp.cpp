@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
 #include "specula/sampling/sampler.h"
 
@@ -354,8 +355,8 @@ std::string model_density(const Model& model) {
 
 /// M+ms: M's model_pdf / model_draw in namespace base, and the mixture with cosine sampling.
 std::string compensated_density(const Model& model, const Compensated& compensated) {
-  return fmt::format("namespace base {{  // {}\n{}}}  // namespace base\n{}", compensated.base->id(),
-                     model_density(*compensated.base),
+  return fmt::format("namespace base {{  // {}\n{}}}  // namespace base\n{}",
+                     expr::comment_text(compensated.base->id()), model_density(*compensated.base),
                      replaced(kCompensatedDensity, "%ENERGY%", glsl::entry_name(model) + "_energy"));
 }
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
 
 namespace specula::fit {
 namespace {
@@ -43,6 +44,16 @@ const std::set<std::string_view>& reserved_words(std::string_view language) {
   return language == "cpp" ? cpp : language == "glsl" ? glsl : language == "python" ? python : none;
 }
 
+/// One line of text (expr::comment_text's) as the body of a Python string literal.
+std::string python_string_body(std::string_view line) {
+  std::string out;
+  for (const char ch : line) {
+    if (ch == '\\' || ch == '"') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 std::vector<std::string> typed(const std::vector<std::string>& variables, std::string_view type) {
   std::vector<std::string> params;
   for (const auto& v : variables) params.push_back(fmt::format("{} {}", type, v));
@@ -76,16 +87,17 @@ std::string emit_function(const expr::Expression& formula, std::string_view lang
   check_language(language);
   const auto& vars = formula.variables();
   const std::string name = function_name(target);
+  const std::string comment = expr::comment_text(origin);
   if (language == "cpp")
-    return fmt::format("// {}\ninline double {}({}) {{ return {}; }}\n", origin, name,
+    return fmt::format("// {}\ninline double {}({}) {{ return {}; }}\n", comment, name,
                        fmt::join(typed(vars, "double"), ", "), expr::to_cpp(formula));
   if (language == "glsl")
-    return fmt::format("// {}\nfloat {}({}) {{ return {}; }}\n", origin, name,
+    return fmt::format("// {}\nfloat {}({}) {{ return {}; }}\n", comment, name,
                        fmt::join(typed(vars, "float"), ", "), expr::to_glsl(formula));
   if (language == "python")
     return fmt::format("import math\n\n\ndef {}({}):\n    \"\"\"{}\"\"\"\n    return {}\n", name,
-                       fmt::join(vars, ", "), origin, expr::to_python(formula));
-  return fmt::format("% {}\n{} = {}\n", origin, target, expr::to_latex(formula));
+                       fmt::join(vars, ", "), python_string_body(comment), expr::to_python(formula));
+  return fmt::format("% {}\n{} = {}\n", comment, target, expr::to_latex(formula));
 }
 
 }  // namespace specula::fit

@@ -12,6 +12,7 @@
 #include "dialect.h"
 #include "formula_glsl.h"
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
 #include "specula/families/families.h"
 #include "specula/normalize/log_coef_float.h"
 #include "src/glsl/shader_files.h"
@@ -125,7 +126,8 @@ std::string add_formula_lobe(ShaderSource& src, const Target& target, const Mode
   const std::string name = entry_name(model) + "_lobe";
   src.add(name, fmt::format("// {}: the lobe F of a user-defined model ({}). Source: {}.\n"
                             "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n{}{}}}",
-                            model.info().name, model.info().origin, model.info().source, name,
+                            expr::comment_text(model.info().name), expr::comment_text(model.info().origin),
+                            expr::comment_text(model.info().source), name,
                             parameter_list(model.info()), program.reads(1) ? "  float u = -log(c);\n" : "",
                             program_lines(program, target.printer())));
   const std::string names = parameter_names(model.info());
@@ -149,7 +151,8 @@ void add_formula_brdf(ShaderSource& src, const Target& target, const Model& mode
           fmt::format("// {}: a user-defined BRDF ({}), f = {}. Source: {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
                       "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n{}{}}}",
-                      model.info().name, model.info().origin, model.info().summary, model.info().source,
+                      expr::comment_text(model.info().name), expr::comment_text(model.info().origin),
+                      expr::comment_text(model.info().summary), expr::comment_text(model.info().source),
                       entry_name(model), parameter_list(model.info()), brdf_inputs(program),
                       program_lines(program, target.printer())));
 }
@@ -189,8 +192,10 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
   src.add(entry_name(model),
           fmt::format("// {}: f = k F(c), {}, {} form. Source: {}; {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n{}  return {};\n}}",
-                      model.info().name, model.info().summary, to_string(model.form()), model.info().source,
-                      model.info().is_builtin() ? fmt::format("docs/math.md 2 `{}`", model.id()) : model.info().origin,
+                      expr::comment_text(model.info().name), expr::comment_text(model.info().summary),
+                      to_string(model.form()), expr::comment_text(model.info().source),
+                      expr::comment_text(model.info().is_builtin() ? fmt::format("docs/math.md 2 `{}`", model.id())
+                                                                   : model.info().origin),
                       entry_name(model), parameter_list(model.info()),
                       target.in_double() ? "  if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return 0.0;\n" : "",
                       k.empty() ? lobe_value : k + " * " + lobe_value));
@@ -217,7 +222,7 @@ void add_compensated_entry(ShaderSource& src, const Target& target, const Model&
           fmt::format("// E(mu) of {} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
                       "// max interpolation error {:.2g} (specula lut). Kulla & Conty 2017.\n"
                       "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n{}}}",
-                      base.id(), n, n, table.interpolation_error, name, n, pieces));
+                      expr::comment_text(base.id()), n, n, table.interpolation_error, name, n, pieces));
   const double ms_factor = table.e_avg < 1 ? 1 / (kPi * (1 - table.e_avg)) : 0.0;
   const std::string names = parameter_names(base.info());
   src.add(name, fmt::format("// {}: f = f_{} + (1 - E(N.L))(1 - E(N.V)) / (pi (1 - E_avg)), E_avg = {:.9g}; the table holds E\n"
@@ -226,7 +231,8 @@ void add_compensated_entry(ShaderSource& src, const Target& target, const Model&
                             "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n"
                             "  float ms = max(0.0, 1.0 - {}_energy(nl)) * max(0.0, 1.0 - {}_energy(nv)) * {};\n"
                             "  return {}(N, L, V{}{}) + ms;\n}}",
-                            model.info().name, base.id(), table.e_avg, name, parameter_list(model.info()), name, name,
+                            expr::comment_text(model.info().name), expr::comment_text(base.id()), table.e_avg, name,
+                            parameter_list(model.info()), name, name,
                             lit(ms_factor), entry_name(base), names.empty() ? "" : ", ", names));
 }
 
@@ -250,20 +256,6 @@ std::string entry_arguments(const Target& target, const Model& model) {
   for (std::size_t i = 0; i < model.params().size(); ++i)
     args += i < 4 ? fmt::format(", params.{}", components[i]) : ", " + target.literal(model.params()[i]);
   return args;
-}
-
-/// ASCII only: the GLSL 3.30 character set (docs/math.md's symbols are spelled out instead).
-std::string ascii(std::string text) {
-  static const std::pair<std::string_view, std::string_view> spelled[] = {
-      {"π", "pi"}, {"θ", "theta"}, {"δ", "d"}, {"α", "alpha"}, {"ρ", "rho"}, {"·", "."}, {"½", "1/2 "}, {"²", "^2"},
-      {"³", "^3"}, {"⁴", "^4"}, {"−", "-"}, {"√", "sqrt"}, {"₁", "1"}, {"₂", "2"}, {"₀", "0"},
-      {"–", "-"}, {"≈", "~"}, {"ˢ", "s"}, {"é", "e"}, {"ü", "u"}, {"ö", "o"}, {"≤", "<="}, {"∈", "in"}, {"§", ""}, {"→", "->"}, {"×", "x"}};
-  for (const auto& [from, to] : spelled)
-    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-      text.replace(at, from.size(), to);
-  for (char& ch : text)
-    if (static_cast<unsigned char>(ch) >= 0x80) ch = '?';
-  return text;
 }
 
 }  // namespace
@@ -338,8 +330,9 @@ std::string model_source(const Model& model, Language language) {
     src.add("specula_brdf",
             fmt::format("// The entry point renderers call: {} with params = ({}).\n"
                         "float specula_brdf(vec3 N, vec3 L, vec3 V, vec4 params) {{\n  return {}(N, L, V{});\n}}",
-                        model.id(), parameter_names(model.info()), entry_name(model), entry_arguments(target, model)));
-  const std::string text = translate(ascii(src.take()), language);
+                        expr::comment_text(model.id()), parameter_names(model.info()), entry_name(model),
+                        entry_arguments(target, model)));
+  const std::string text = translate(src.take(), language);
   return language == Language::cpp ? std::string(cpp_support()) + text : text;
 }
 

@@ -6,6 +6,7 @@
 
 #include "specula/brdf/directions.h"
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
 #include "src/glsl/shader_files.h"
 
 namespace specula::render {
@@ -32,7 +33,7 @@ std::string uniform_documentation(const Model& model) {
       "// Draw 3 vertices of scene_vertex_shader over the image (or tiles of it) and set every uniform;\n"
       "// specula's render::scene_uniforms and render::mesh_textures compute them from a scene.\n"
       "// The default scene's values at 512x512 are in brackets: a unit sphere lit from the upper left front.\n",
-      model.id());
+      expr::comment_text(model.id()));
   const std::vector<std::pair<std::string, std::string>> rows{
       {"vec2 u_resolution", fmt::format("whole image, pixels [{}]", numbers(d.resolution))},
       {"vec2 u_pixel_offset", "this tile's lower-left pixel in the image, from the bottom left [0, 0]"},

@@ -3,9 +3,9 @@
 #include <csignal>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cli_fixture.h"
+#include "text_support.h"
 
 namespace specula::testing {
 namespace {
@@ -13,13 +13,6 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 std::string bytes_of(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -52,6 +45,17 @@ TEST_F(Cli, LutCodeStatesItsInterpolationErrorAndHasTheLookup) {
   EXPECT_THAT(glsl.out, HasSubstr("const float specula_lut_E[12] = float[12]("));
   EXPECT_THAT(glsl.out, HasSubstr("float specula_lut_energy(float mu, float p) {"));
   EXPECT_EQ(glsl.out.find("energy_average"), std::string::npos);  // no --average, no E_avg
+}
+
+// The code's header comment quotes the command line and the model: an inline formula's newline
+// stays in the comment, where "* pwned" on a line of its own would not compile.
+TEST_F(Cli, LutCodeKeepsAnInlineFormulaInItsComments) {
+  for (const char* format : {"cpp", "glsl"}) {
+    const Result r = ok({"lut", "--model", "brdf: rho/pi\n* pwned", "-p", "pwned=1", "--mu", "0.5,1", "--format", format});
+    EXPECT_TRUE(only_in_comments(r.out, "pwned")) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("// specula lut --model brdf: rho/pi * pwned -p pwned=1")) << r.out;
+  }
+  EXPECT_FALSE(only_in_comments("// brdf: rho/pi\n* pwned\n", "pwned"));  // the negative control of the check
 }
 
 TEST_F(Cli, LutImagesAreMuAlongXAndTheParameterAlongY) {

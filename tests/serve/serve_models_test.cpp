@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 #include <thread>
 
+#include "glsl_support.h"
 #include "serve_support.h"
+#include "text_support.h"
 
 namespace specula::serve {
 namespace {
@@ -136,6 +138,30 @@ TEST_F(ServeModels, GlslOfADefinitionIsAShaderOfIt) {
   EXPECT_LE(relative(std::stod(glsl["coef"].get<std::string>()), 52 / (2 * M_PI)), 1e-12);
   EXPECT_THAT(glsl["fragment_shader"].get<std::string>(), HasSubstr("specula_brdf"));
   EXPECT_EQ(ok("/api/glsl", {{"model", "lobe: c^n"}})["model"], "lobe: c^n");
+}
+
+// A definition's text (here its name, summary and source) may hold anything: the GLSL answered
+// keeps it in comments and compiles, the function and the whole fragment shader alike.
+TEST_F(ServeModels, GlslOfAHostileDefinitionKeepsItsTextInComments) {
+  json hostile = phong_copy();
+  hostile["name"] = "innocent\n#error injected\nstatic int pwned = 1; //";
+  hostile["summary"] = "*/ float pwned_block; /* \r#error pwned_cr \u2028 pwned_ls ?\?/";
+  hostile["source"] = "a trailing backslash splices the next line: pwned \\";
+  const json glsl = ok("/api/glsl", {{"model", hostile}, {"dialect", "glsl330"}, {"shader", true}});
+  const std::string function = glsl["version_header"].get<std::string>() + glsl["function"].get<std::string>() +
+                               "out vec4 color;\nvoid main() { color = vec4(specula_brdf(vec3(0.0), vec3(0.0), "
+                               "vec3(0.0), vec4(1.0))); }\n";
+  const std::string fragment = glsl["fragment_shader"];
+  for (const std::string& shader : {function, fragment}) {
+    EXPECT_TRUE(specula::testing::only_in_comments(shader, "pwned")) << shader;
+    const auto check = specula::testing::validate_glsl(shader, "frag");
+    EXPECT_TRUE(check.ok) << check.log << shader;
+  }
+  EXPECT_THAT(fragment, HasSubstr("// innocent #error injected static int pwned = 1; //: f = k F(c)"));
+  // Negative control: a line of code added to the shader is caught by both checks.
+  const std::string injected = fragment + "\n#error injected\nfloat pwned = 1.0;\n";
+  EXPECT_FALSE(specula::testing::only_in_comments(injected, "pwned"));
+  EXPECT_FALSE(specula::testing::validate_glsl(injected, "frag").ok);
 }
 
 // The search itself is not reproducible run to run, so this compares what the job fits: its rows.

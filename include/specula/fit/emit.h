@@ -20,7 +20,8 @@ std::string function_name(std::string_view target);
 void check_emittable(const std::vector<std::string>& variables, std::string_view language);
 
 /// The formula as a function named function_name(target) taking its variables, after a comment
-/// line holding `origin` (LaTeX: an equation `target = …`).
+/// line holding `origin` as expr::comment_text writes it (Python: a docstring, escaped; LaTeX: an
+/// equation `target = …`).
 std::string emit_function(const expr::Expression& formula, std::string_view language,
                           std::string_view target, std::string_view origin);
 
