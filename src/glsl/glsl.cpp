@@ -281,6 +281,23 @@ std::string version_header(Dialect dialect) {
   return "#version 300 es\nprecision highp float;\nprecision highp int;\n";
 }
 
+namespace {
+
+/// Names longer than this (an inline model's formula as its id) keep a prefix and a hash of the id:
+/// glslang refuses identifiers over 1024 characters, and a name should stay readable.
+constexpr std::size_t kMaxEntryName = 64;
+
+std::string shortened(std::string name, std::string_view id) {
+  if (name.size() <= kMaxEntryName) return name;
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits
+  for (const char ch : id) hash = (hash ^ static_cast<unsigned char>(ch)) * 1099511628211ull;
+  name.resize(kMaxEntryName - 17);
+  if (name.back() == '_') name.pop_back();
+  return fmt::format("{}_{:016x}", name, hash);
+}
+
+}  // namespace
+
 std::string entry_name(const Model& model) {
   // GLSL identifiers: letters, digits and single underscores ("__" is reserved).
   std::string name = "specula_";
@@ -289,7 +306,7 @@ std::string entry_name(const Model& model) {
     else if (name.back() != '_') name += '_';
   }
   if (name.back() == '_') name.pop_back();
-  return name;
+  return shortened(name, model.id());
 }
 
 std::string float_literal(double value) {

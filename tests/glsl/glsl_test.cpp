@@ -145,6 +145,17 @@ TEST(Glsl, UserModelsCarryTheirFormulasCoefficientsAndParameters) {
             std::string::npos) << six;
   // An inline model's id becomes an identifier: runs of other characters are one '_'.
   EXPECT_EQ(entry_name(make_model("lobe: c^n")), "specula_lobe_c_n");
+  // A long formula's name keeps a prefix and a hash of the whole id (glslang refuses names of over
+  // 1024 characters; this one was 4100): distinct formulas, distinct names; the shader compiles.
+  std::string product = "c";
+  for (int i = 0; i < 2047; ++i) product += "*c";
+  const std::string long_name = entry_name(make_model("lobe: " + product));
+  EXPECT_LE(long_name.size(), 64u) << long_name;
+  EXPECT_NE(long_name, entry_name(make_model("lobe: " + product.substr(2))));
+  for (const Dialect dialect : kDialects) {
+    const auto check = testing::validate_glsl(test_shader(make_model("lobe: " + product), dialect), "frag");
+    EXPECT_TRUE(check.ok) << check.log.substr(0, 2000);
+  }
   for (const Dialect dialect : kDialects) {
     const auto check = testing::validate_glsl(test_shader(make_model("lobe: max(0, 1 - n*(1-c)/4)^4", {{"n", 8}}), dialect), "frag");
     EXPECT_TRUE(check.ok) << check.log;
