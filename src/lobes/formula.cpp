@@ -1,11 +1,15 @@
 // lobes::Formula: evaluation through expr::Program, and the numerical search for the support
-// end, the half-maximum and the kinks (lobes/formula.h).
+// end, the half-maximum and the kinks (lobes/formula.h). The search checks the work limit
+// (specula/interrupt) every kPointsPerCheck grid points and before each bisection: one point of
+// a long formula with many min/max costs up to a few hundred thousand operations.
 #include "specula/lobes/formula.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+
+#include "specula/interrupt/interrupt.h"
 
 namespace specula::lobes {
 namespace {
@@ -14,6 +18,7 @@ constexpr std::size_t kGridSize = 2000;
 constexpr double kGridLow = 1e-20;
 constexpr double kGridHigh = 64;
 constexpr std::size_t kMaxKinks = 64;
+constexpr std::size_t kPointsPerCheck = 64;
 
 std::vector<double> log_cos_grid() {
   std::vector<double> u(kGridSize);
@@ -31,6 +36,7 @@ const std::vector<double>& grid() {
 /// The boundary between a (where inside(a)) and b (where !inside(b)), to the last bit.
 template <class Inside>
 double bisect(double a, double b, const Inside& inside) {
+  check_interrupt();
   for (int i = 0; i < 200; ++i) {
     const double mid = a + (b - a) / 2;
     if (mid == a || mid == b) break;
@@ -80,7 +86,10 @@ Formula::Formula(std::shared_ptr<const FormulaDefinition> definition, std::vecto
                                       program.param_count(), params_.size()));
   const auto& u = grid();
   std::vector<double> f(u.size());
-  for (std::size_t i = 0; i < u.size(); ++i) f[i] = at_log_cos(u[i]);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    if (i % kPointsPerCheck == 0) check_interrupt();
+    f[i] = at_log_cos(u[i]);
+  }
 
   // Support: the end of the last nonzero stretch (F ≠ 0 at the grid's end: none).
   std::size_t last = u.size();
@@ -121,6 +130,7 @@ Formula::Formula(std::shared_ptr<const FormulaDefinition> definition, std::vecto
   set_point(u[0]);
   for (std::size_t a = 0; a < arguments.size(); ++a) previous[a] = expr::evaluate_unchecked(arguments[a], slots);
   for (std::size_t i = 1; i < u.size() && u[i - 1] < support_ && changes.size() < kMaxKinks; ++i) {
+    if (i % kPointsPerCheck == 0) check_interrupt();
     set_point(u[i]);
     for (std::size_t a = 0; a < arguments.size(); ++a) {
       const double value = expr::evaluate_unchecked(arguments[a], slots);

@@ -11,6 +11,7 @@
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"
@@ -18,6 +19,8 @@
 
 namespace specula::queries {
 namespace {
+
+constexpr std::size_t kRowsPerCheck = 256;  // evaluations of eval's rows between interrupt checks
 
 [[noreturn]] void fail(std::string_view key, const std::string& message) {
   throw InvalidField(std::string(key), message);
@@ -128,6 +131,7 @@ io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool 
                             spelled("theta_i", spelling), spelled("theta_o", spelling)));
   io::Table table{{"cos", "value"}, {}, model_meta(m)};
   for (const double c : cosines) {
+    if (table.rows.size() % kRowsPerCheck == 0) check_interrupt();
     if (!(c >= -1 && c <= 1))  // NaN too
       fail("cos", fmt::format("{} {} is outside [-1, 1]", spelled("cos", spelling), c));
     table.rows.push_back({c, bare_lobe ? lobes::eval(m.lobe(), c) : m.at_cos(c)});
@@ -145,6 +149,7 @@ io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const
   table.meta.emplace_back("theta_i_deg", io::format_number(theta_i_deg));
   table.meta.emplace_back("phi_o_deg", io::format_number(phi_o_deg));
   for (const double theta_o : theta_o_deg) {
+    if (table.rows.size() % kRowsPerCheck == 0) check_interrupt();
     require_degrees("theta_o", theta_o, 0, 90, spelling);
     table.rows.push_back({theta_o, m(n, l, from_spherical(radians(theta_o), radians(phi_o_deg)))});
   }
@@ -276,6 +281,7 @@ fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, s
     fail("params", fmt::format("give n with {}, not {}", spelled("n", spelling), spelled("params", spelling)));
   fit::Data data{{"n"}, {{n.begin(), n.end()}}, {}};
   for (const double x : n) {
+    check_interrupt();
     const Model m = lobe_model_at("model", "fit", spec.model, spec.params, x, spec.form, spelling);
     const double k = normalize::coefficient(m.lobe(), m.form());
     data.target.push_back(digits ? std::stod(io::format_number(k, *digits)) : k);
@@ -287,6 +293,7 @@ std::string glsl_function(const Model& model, std::string_view dialect_name, Spe
   const glsl::Dialect dialect = for_field("dialect", [&] { return glsl::parse_dialect(dialect_name); });
   std::string params;
   for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
+  params = expr::comment_text(params);
   const auto p = glsl::model_params(model);
   const std::string call = fmt::format("vec4({}, {}, {}, {})", glsl::float_literal(p[0]), glsl::float_literal(p[1]),
                                        glsl::float_literal(p[2]), glsl::float_literal(p[3]));

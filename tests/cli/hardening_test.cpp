@@ -142,4 +142,39 @@ TEST_F(Cli, SigintAndSigtermStopARenderWithTheirExitCodesAndNoFile) {
   }
 }
 
+// A user model checks the stop flag while it is made (the kink search) and inside each integral
+// (issue 23): the work itself stops ("interrupted by signal 2"), not StopSignals' forced exit
+// after its 2 s grace ("specula: stopped" alone, also 130: what these did before).
+std::string chain(const std::string& op, std::size_t characters) {
+  std::string text = "c";
+  while (text.size() + op.size() + 1 <= characters) text += op + "c";
+  return text;
+}
+
+TEST_F(Cli, SigintStopsTheWorkOfAUserModelItself) {
+  // 584 nested max(): seconds of kink search per model made.
+  std::string nested;
+  for (int i = 0; i < 584; ++i) nested += "max(";
+  nested += "c";
+  for (int i = 0; i < 584; ++i) nested += ",c)";
+  // Two lets of 4091 characters: the albedo at 40° is one integral of seconds.
+  const fs::path file = work() / "costly.toml";
+  write_text(file, fmt::format("[[model]]\nid = \"costly\"\nname = \"costly\"\nkind = \"lobe\"\nform = \"rv\"\n"
+                               "let = [\"a = {0}\", \"b = {0}\"]\n"
+                               "lobe = \"max(0, sin(1000*acos(c))) + 0*(a + b)\"\nnormalization = \"none\"\n",
+                               chain("+", 4091)));
+  const std::vector<std::string> commands[] = {{"eval", "--model", "lobe: " + nested, "--cos", "1"},
+                                               {"albedo", "--models", file.string(), "--model", "costly", "--theta", "40"}};
+  for (const auto& command : commands) {
+    const pid_t pid = start(command);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, SIGINT);
+    const auto stopped = Clock::now();
+    const Result r = finish_within(pid, std::chrono::seconds(60));
+    EXPECT_EQ(r.code, 128 + SIGINT) << command[0] << "\n" << r;
+    EXPECT_EQ(r.err, fmt::format("specula: stopped: interrupted by signal {}\n", SIGINT)) << command[0];
+    EXPECT_LT(seconds_since(stopped), 5) << command[0];
+  }
+}
+
 }  // namespace
