@@ -89,8 +89,7 @@ std::string sampling_text(const Model& m, const sampling::SamplingCheck& c) {
                      "χ²", "dof", "p", "α_θ", "∫pdf", "mean weight", "± se", "albedo", "max wt", "verdict");
   for (const sampling::AngleCheck& a : c.angles) {
     if (a.negative_samples) {
-      out += fmt::format("  {:>5}° FAILS: f < 0 at {} samples (min f = {:.6g}): the model is negative, which no "
-                         "sampler can follow; the check stops here\n",
+      out += fmt::format("  {:>5}° FAILS: f < 0 at {} samples (min f = {:.6g}): the model is negative; the check stops here\n",
                          a.theta_deg, a.negative_samples, a.min_f);
       continue;
     }

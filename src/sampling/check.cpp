@@ -41,8 +41,8 @@ Vec3 direction(double mu, double phi) noexcept {
 /// What a block of samples adds up to.
 struct BlockTally {
   std::vector<double> histogram;
-  double sum = 0, sum_sq = 0, max_weight = 0;
-  std::size_t valid = 0, outside = 0, mismatches = 0;
+  double sum = 0, sum_sq = 0, max_weight = 0, min_f = 0;
+  std::size_t valid = 0, outside = 0, mismatches = 0, negative = 0;
 };
 
 BlockTally tally(const SamplerUnderTest& sampler, const Vec3& wi, const Grid& grid, const std::vector<Sample>& samples) {
@@ -50,11 +50,21 @@ BlockTally tally(const SamplerUnderTest& sampler, const Vec3& wi, const Grid& gr
   t.histogram.assign(std::size_t(grid.rows) * grid.cols, 0.0);
   for (const Sample& s : samples) {
     if (s.pdf == 0 && s.weight == 0) continue;  // no sample: counts as weight 0
-    if (!(s.wo.z > 0) || !(s.pdf > 0) || !std::isfinite(s.pdf) || !std::isfinite(s.weight) || s.weight < 0) {
+    if (!(s.wo.z > 0) || !(s.pdf > 0) || !std::isfinite(s.pdf) || !std::isfinite(s.weight)) {
       ++t.outside;
       continue;
     }
-    const double expected = (*sampler.model)(kNormal, wi, s.wo) * s.wo.z / sampler.pdf(wi, s.wo);
+    const double f = (*sampler.model)(kNormal, wi, s.wo);
+    if (f < 0) {
+      ++t.negative;
+      t.min_f = std::min(t.min_f, f);
+      continue;
+    }
+    if (s.weight < 0) {
+      ++t.outside;
+      continue;
+    }
+    const double expected = f * s.wo.z / sampler.pdf(wi, s.wo);
     if (!(std::abs(s.weight - expected) <= 1e-9 * std::max(s.weight, expected) + 1e-300)) ++t.mismatches;
     ++t.valid;
     ++t.histogram[grid.cell_of(s.wo)];
@@ -140,6 +150,7 @@ class CellIntegrator {
   }
 
   Result refine(const Rect& r, double coarse, int depth) {
+    check_interrupt();  // a cell near a narrow peak may take thousands of refinements
     const Split peak = peak_split(r);
     const std::vector<Rect> parts = halves(r, peak.mu || peak.phi ? peak : Split{true, true});
     std::vector<double> values(parts.size());
@@ -228,14 +239,17 @@ AngleCheck check_angle(const SamplerUnderTest& sampler, const SamplingCheckOptio
     for (std::size_t c = 0; c < a.observed.size(); ++c) a.observed[c] += t.histogram[c];
     sum += t.sum, sum_sq += t.sum_sq;
     a.valid_samples += t.valid, a.outside += t.outside, a.weight_mismatches += t.mismatches;
+    a.negative_samples += t.negative;
+    a.min_f = std::min(a.min_f, t.min_f);
     a.max_weight = std::max(a.max_weight, t.max_weight);
   }
+  a.expected.assign(a.observed.size(), 0.0);
+  if (a.negative_samples > 0) return a;  // f < 0: the finding; χ² and albedo mean nothing
   const double n = double(o.samples);
   a.mean_weight = sum / n;
   a.standard_error = std::sqrt(std::max(0.0, sum_sq / n - a.mean_weight * a.mean_weight) / n);
 
   const double width = analysis::angular_width(*sampler.model);
-  a.expected.assign(a.observed.size(), 0.0);
   std::vector<CellIntegrator::Result> cells(a.observed.size());
   std::vector<std::size_t> uncovered(grid.rows, 0);
   tbb::parallel_for(0, grid.rows, carry_limit([&](int row) {
@@ -286,8 +300,10 @@ SamplingCheck check_sampling(const SamplerUnderTest& sampler, const SamplingChec
   validate(options);
   SamplingCheck result{sampler.description, sampler.table_error, options.cos_bins, {}};
   const double per_angle = 1 - std::pow(1 - options.alpha, 1.0 / double(options.theta_deg.size()));
-  for (std::size_t i = 0; i < options.theta_deg.size(); ++i)
+  for (std::size_t i = 0; i < options.theta_deg.size(); ++i) {
     result.angles.push_back(check_angle(sampler, options, i, per_angle));
+    if (result.angles.back().negative_samples > 0) break;
+  }
   return result;
 }
 

@@ -76,6 +76,27 @@ TEST_F(Cli, CheckSamplingPassesAndDrawsTheHeatMap) {
   EXPECT_THAT(json.out, ::testing::HasSubstr("\"passes\": true"));
 }
 
+// Issue 23: a negative model ran `check --sampling` past 25 s; it is the check's finding, printed
+// at once (exit 1), and no further angle is checked. `brdf: nl` is the control.
+TEST_F(Cli, CheckSamplingOfANegativeModelSaysSoAndStops) {
+  const std::string png = (work() / "negative.png").string();
+  const Result r = finish_within(start({"check", "--model", "brdf: -nl", "--sampling", "--samples", "1000", "--theta-i",
+                                        "0,30", "--out", png}),
+                                 std::chrono::seconds(60));
+  EXPECT_EQ(r.code, 1) << r;
+  EXPECT_THAT(r.out, ::testing::HasSubstr(
+                         "0° FAILS: f < 0 at 1000 samples (min f = -1): the model is negative; the check stops here\n"));
+  EXPECT_EQ(r.out.find("30°"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(fs::exists(png));
+  const Result json = run({"check", "--model", "brdf: -nl", "--sampling", "--samples", "1000", "--json"});
+  EXPECT_EQ(json.code, 1);
+  EXPECT_THAT(json.out, ::testing::HasSubstr("\"negative\": 1000, \"min_f\": -1, \"passes\": false"));
+  const Result control = ok({"check", "--model", "brdf: nl", "--sampling", "--samples", "1000", "--theta-i", "0,30"});
+  EXPECT_EQ(count_substrings(control.out, "passes"), 2) << control.out;
+  EXPECT_EQ(control.out.find("f < 0"), std::string::npos);
+}
+
 TEST_F(Cli, CheckSamplingRefusesBadInput) {
   bad({"check", "--model", "ggx", "--sampling", "--theta-i", "95"});
   bad({"check", "--model", "ggx", "--sampling", "--samples", "10"});

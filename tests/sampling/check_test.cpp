@@ -2,9 +2,14 @@
 // parameters and at narrow and broad ones — and fails samplers broken on purpose, each in the way
 // one of its checks is there to catch.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
 #include <numbers>
 
 #include "specula/exceptions.h"
+#include "specula/interrupt/interrupt.h"
 #include "model_ids.h"
 #include "specula/sampling/check.h"
 
@@ -159,6 +164,51 @@ TEST(BrokenSampler, SamplesBelowTheHorizonAreCaught) {
   const SamplingCheck c = check_sampling(b.test, quick());
   EXPECT_GT(c.angles[0].outside, 0u);
   EXPECT_FALSE(c.passes());
+}
+
+// Issue 23: a negative model is what the check exists to report. It fails at the first angle
+// where a sample has f < 0 and checks nothing further (before, the cubature refined its cells
+// toward a "peak" 1e-6 wide — the half maximum of a negative f — without end).
+TEST(SamplingCheck, ANegativeModelFailsAtOnceAndStops) {
+  SamplingCheckOptions o;
+  o.samples = 1000;
+  o.theta_deg = {0, 30, 60};
+  const SamplingCheck negative = check_sampling(Sampler(make_model("brdf: -nl")), o);
+  ASSERT_EQ(negative.angles.size(), 1u);
+  EXPECT_EQ(negative.angles[0].negative_samples, o.samples);  // cosine-weighted; f = −cos θ_i everywhere
+  EXPECT_EQ(negative.angles[0].min_f, -1);
+  EXPECT_FALSE(negative.passes());
+  const SamplingCheck positive = check_sampling(Sampler(make_model("brdf: nl")), o);  // the control
+  ASSERT_EQ(positive.angles.size(), 3u);
+  for (const AngleCheck& a : positive.angles) EXPECT_EQ(a.negative_samples, 0u);
+  EXPECT_TRUE(positive.passes()) << failures(positive);
+}
+
+// Ctrl-C (or a deadline) reaches the χ² cubature inside a row of cells, not only between rows:
+// one thread, a cancel a hundred pdf calls into the first row (of ~5000), and what follows it.
+TEST(SamplingCheck, AStopInsideTheCubatureEndsItWithinOneRefinement) {
+  const Sampler lambert(make_model("lambert"));
+  SamplerUnderTest test = SamplerUnderTest::of(lambert);
+  constexpr std::size_t kSamples = 1000, kStopAt = kSamples + 100;  // the tally's calls, then the cubature's
+  std::atomic<bool> cancel{false};
+  std::size_t calls = 0, after_stop = 0;
+  test.pdf = [&](const Vec3& wi, const Vec3& wo) {
+    if (++calls == kStopAt) cancel = true;
+    if (cancel) ++after_stop;
+    return lambert.pdf(wi, wo);
+  };
+  SamplingCheckOptions o;
+  o.samples = kSamples;
+  o.theta_deg = {0};
+  tbb::task_arena one_thread(1);
+  const ScopedLimit limit(WorkLimit{std::chrono::steady_clock::time_point::max(), &cancel});
+  one_thread.execute([&] { EXPECT_THROW(check_sampling(test, o), Interrupted); });
+  EXPECT_LT(after_stop, 200u);  // what a refinement had left (≤ 4 × 16 calls), and the next cell's rule
+  calls = after_stop = 0;
+  cancel = false;
+  const ScopedLimit never(WorkLimit{std::chrono::steady_clock::time_point::max(), nullptr});
+  one_thread.execute([&] { EXPECT_TRUE(check_sampling(test, o).passes()); });
+  EXPECT_GT(after_stop, 32u * 64 * 16);  // the control: without a stop, every cell of every row
 }
 
 TEST(SamplingCheck, AnglesAreSidakCorrected) {

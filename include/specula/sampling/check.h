@@ -17,6 +17,8 @@
 //   - ∫ pdf over the hemisphere ≤ 1 + 1e-5 (+ the cubature's error estimate);
 //   - the mean weight equals the cubature albedo ρ(θ_i) within z_θ standard errors (z_θ the
 //     normal quantile of the same α_θ, two-sided) plus 1e-8 ρ.
+// A model with f < 0 at a sample fails there at once: a negative density cannot be sampled, and
+// the χ² and albedo checks mean nothing for it, so the check stops at that angle.
 // Deterministic for a seed: samples come in blocks with seeds of their own, whatever the threads.
 #include <cstdint>
 #include <string>
@@ -51,6 +53,8 @@ struct AngleCheck {
   std::size_t weight_mismatches = 0;
   std::size_t uncovered_nodes = 0;  ///< cubature nodes where f > 0 but pdf = 0
   std::size_t unexpected_samples = 0;  ///< samples in cells the cubature found empty (pooled)
+  std::size_t negative_samples = 0;    ///< samples where f < 0: nothing else is checked then
+  double min_f = 0;                    ///< the least f among them
   double max_weight = 0;
   /// cos_bins × 2 cos_bins histograms, row-major (cos θ_o rows from the horizon up, φ columns).
   std::vector<double> observed, expected;
@@ -59,8 +63,8 @@ struct AngleCheck {
   bool albedo_agrees() const noexcept;
   bool pdf_normalized() const noexcept { return pdf_integral <= 1 + pdf_integral_error + 1e-5; }
   bool passes() const noexcept {
-    return chi2_passes() && albedo_agrees() && pdf_normalized() && outside == 0 && weight_mismatches == 0 &&
-           uncovered_nodes == 0;
+    return negative_samples == 0 && chi2_passes() && albedo_agrees() && pdf_normalized() && outside == 0 &&
+           weight_mismatches == 0 && uncovered_nodes == 0;
   }
 };
 
@@ -86,7 +90,8 @@ struct SamplerUnderTest {
 };
 
 /// Throws InvalidArgument for an angle outside [0°, 90°), no angles, samples outside [1e3, 1e8],
-/// cos_bins outside [4, 128] or alpha outside (0, 0.5).
+/// cos_bins outside [4, 128] or alpha outside (0, 0.5). The angles after one where f < 0 at a
+/// sample are not checked (the result ends there).
 SamplingCheck check_sampling(const SamplerUnderTest& sampler, const SamplingCheckOptions& options = {});
 SamplingCheck check_sampling(const Sampler& sampler, const SamplingCheckOptions& options = {});
 
