@@ -122,17 +122,17 @@ def group_definitions(ctx, g, summary, quick, judge, cancel_job, with_files=Fals
     """Definition objects on every computing route (and, with_files, the server's model files by
     id), WORKERS at once: each answered within DEADLINE_S + MARGIN_S (the cheap ones 200); the
     worst per route is recorded."""
-    todo = queue.Queue()
+    pending = queue.Queue()
     all_cases = cases(quick) + hostile_glsl_cases(quick) + (file_model_cases() if with_files else [])
     for c in all_cases:
-        todo.put(c)
+        pending.put(c)
     results = []
     lock = threading.Lock()
 
     def worker():
         while True:
             try:
-                route, body, label, expect = todo.get_nowait()
+                route, body, label, expect = pending.get_nowait()
             except queue.Empty:
                 return
             r = post(ctx, route, body)
