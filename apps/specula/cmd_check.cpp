@@ -1,6 +1,7 @@
 // specula check: does a model conserve energy at every angle, is it reciprocal and non-negative?
 // Exit 0 when every property holds for every parameter value, 1 when one fails.
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <iostream>
 
@@ -88,6 +89,11 @@ std::string sampling_text(const Model& m, const sampling::SamplingCheck& c) {
   out += fmt::format("\n  {:>6} {:>9} {:>10} {:>5} {:>9} {:>8} {:>10} {:>12} {:>10} {:>12} {:>9}  {}\n", "θ_i", "samples",
                      "χ²", "dof", "p", "α_θ", "∫pdf", "mean weight", "± se", "albedo", "max wt", "verdict");
   for (const sampling::AngleCheck& a : c.angles) {
+    if (a.non_finite_samples) {
+      out += fmt::format("  {:>5}° FAILS: f is inf or NaN at {} samples: the model is not finite; the check stops here\n",
+                         a.theta_deg, a.non_finite_samples);
+      continue;
+    }
     if (a.negative_samples) {
       out += fmt::format("  {:>5}° FAILS: f < 0 at {} samples (min f = {:.6g}): the model is negative; the check stops here\n",
                          a.theta_deg, a.negative_samples, a.min_f);
@@ -107,6 +113,9 @@ std::string sampling_text(const Model& m, const sampling::SamplingCheck& c) {
   return out;
 }
 
+/// A JSON number, or null for inf and NaN (which JSON has no number for).
+std::string json_number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "null"; }
+
 std::string sampling_json(const Model& m, const sampling::SamplingCheck& c) {
   std::string out = fmt::format("{{\"model\": \"{}\", \"method\": \"{}\", \"table_error\": {}, \"passes\": {}, \"angles\": [",
                                 describe(m), c.method, c.table_error, c.passes());
@@ -115,10 +124,13 @@ std::string sampling_json(const Model& m, const sampling::SamplingCheck& c) {
     out += fmt::format("{}\n  {{\"theta_deg\": {}, \"samples\": {}, \"chi2\": {}, \"dof\": {}, \"p_value\": {}, "
                        "\"alpha\": {}, \"pdf_integral\": {}, \"mean_weight\": {}, \"standard_error\": {}, "
                        "\"albedo\": {}, \"max_weight\": {}, \"outside\": {}, \"weight_mismatches\": {}, "
-                       "\"uncovered\": {}, \"in_empty_cells\": {}, \"negative\": {}, \"min_f\": {}, \"passes\": {}}}",
-                       i ? "," : "", a.theta_deg, a.valid_samples, a.chi2, a.dof, a.p_value, a.alpha, a.pdf_integral,
-                       a.mean_weight, a.standard_error, a.albedo, a.max_weight, a.outside, a.weight_mismatches,
-                       a.uncovered_nodes, a.unexpected_samples, a.negative_samples, a.min_f, a.passes());
+                       "\"uncovered\": {}, \"in_empty_cells\": {}, \"negative\": {}, \"min_f\": {}, "
+                       "\"non_finite\": {}, \"passes\": {}}}",
+                       i ? "," : "", a.theta_deg, a.valid_samples, json_number(a.chi2), a.dof, json_number(a.p_value),
+                       a.alpha, json_number(a.pdf_integral), json_number(a.mean_weight), json_number(a.standard_error),
+                       json_number(a.albedo), json_number(a.max_weight), a.outside, a.weight_mismatches,
+                       a.uncovered_nodes, a.unexpected_samples, a.negative_samples, json_number(a.min_f),
+                       a.non_finite_samples, a.passes());
   }
   return out + "\n]}\n";
 }

@@ -22,6 +22,10 @@ StopSignals::StopSignals(std::chrono::milliseconds grace) : grace_(grace) {
 
 StopSignals::~StopSignals() {
   done_ = true;
+  // Wakes the watcher now rather than at its next poll (which made every command last at least
+  // 50 ms): a signal sent to that thread alone, which it takes in sigtimedwait and ignores once
+  // done_ is set.
+  pthread_kill(watcher_.native_handle(), SIGTERM);
   watcher_.join();
 }
 

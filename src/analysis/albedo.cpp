@@ -1,8 +1,11 @@
 #include "specula/analysis/albedo.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include <vector>
 
 #include "../numeric/piecewise.h"
 #include "specula/analysis/parallel.h"
@@ -15,8 +18,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kLogCosEnd = 40;  // α with cos α = e^(−40): the rest weighs < 1e-17
 // Relative tolerances on |K31 − G15|, which overstates the error of K31 by orders of magnitude:
-// these give 10+ digits (measured against a run at 1e-10/1e-12: ≤ 7e-11 apart). The inner one is
-// tighter because inner noise stalls the outer error control.
+// these give 12+ digits (measured against tests/reference/albedo.csv: ≤ 2e-13 apart). The inner
+// one is tighter because inner noise stalls the outer error control.
 constexpr double kOuterTolerance = 1e-9;
 constexpr double kInnerTolerance = 1e-11;
 constexpr unsigned kInnerMaxDepth = 8;
@@ -47,7 +50,7 @@ Albedo rv_albedo(const L& lobe, double k, double theta_i) {
   std::vector<double> breaks{horizon};
   for (const double kink : lobes::kinks_log_cos(lobe)) breaks.push_back(kink);
   const auto e = numeric::integrate_pieces(integrand, 0, end, lobe.half_max_log_cos(), breaks, kOuterTolerance);
-  return {k * e.value, k * e.error};
+  return {k * e.value, k * e.error, e.evaluations};
 }
 
 /// ρ = 2 ∫₀^{θ_h,max} sin θ_h ∫₀^{φ_max(θ_h)} 4 (L·H)(N·V) f(L, V) dφ dθ_h; the factor 2 and
@@ -57,19 +60,79 @@ Albedo rv_albedo(const L& lobe, double k, double theta_i) {
 /// f has Cook & Torrance's V-cavity G, whose min() has kinks at known φ_h.
 struct HalfVectorShape {
   double width;
-  double support = std::numbers::pi / 2;
+  double support = std::numbers::pi / 2;  ///< f is 0 beyond, or below 1e-18 of its integral
   bool vcavity = false;
 };
 
-/// The φ_h where G's min() switches, for L at θ_i and H at θ_h: where 2(N·H)(N·L) = V·H and
-/// where 2(N·H)(N·V) = V·H (V·H = L·H).
-std::pair<double, double> vcavity_kinks(double ci, double si, double ch, double sh) {
+/// The φ_h where G's min() switches, for L at θ_i and H at θ_h (V·H = L·H): up to θ_h = 45°,
+/// where 2(N·H)(N·L) = V·H and where 2(N·H)(N·V) = V·H (each term reaches 1 while the other is
+/// above it); beyond, where N·V = N·L (the two terms cross below 1); −1 for none.
+std::array<double, 2> vcavity_kinks(double ci, double si, double ch, double sh) {
   auto phi_where_lh = [&](double lh) {
     const double x = (lh - ci * ch) / (si * sh);
     return x > -1 && x < 1 ? std::acos(x) : -1.0;
   };
   const double q = 4 * ch * ch - 1;
-  return {phi_where_lh(2 * ch * ci), q > 0 ? phi_where_lh(2 * ch * ci / q) : -1.0};
+  if (2 * ch * ch < 1) return {phi_where_lh(ci / ch), -1.0};
+  return {phi_where_lh(2 * ch * ci), phi_where_lh(2 * ch * ci / q)};
+}
+
+/// Appends the roots of gap(θ_h) in (lo, hi): a scan for sign changes, then bisection.
+template <class Gap>
+void append_roots(const Gap& gap, double lo, double hi, std::vector<double>& roots) {
+  constexpr int kScan = 128;
+  for (int k = 0; k < kScan; ++k) {
+    double a = lo + (hi - lo) * k / kScan, b = lo + (hi - lo) * (k + 1) / kScan;
+    if ((gap(a) > 0) == (gap(b) > 0)) continue;
+    while (b - a > 1e-15 * b) {
+      const double mid = (a + b) / 2;
+      ((gap(mid) > 0) == (gap(a) > 0) ? a : b) = mid;
+    }
+    roots.push_back(a);
+  }
+}
+
+/// The θ_h in (0, upper) where the outer integrand bends because a kink of vcavity_kinks enters or
+/// leaves the φ_h range, where L·H is cos(θ_i ∓ θ_h) at φ_h = 0, π: at 45°, where the kinks
+/// change; at 90° − θ_i, where the first one crosses φ_h = 0; and where the second crosses φ_h = 0
+/// or π, cos(θ_i ∓ θ_h)(4cos²θ_h − 1) = 2 cos θ_h cos θ_i, or the third, cos(θ_i ∓ θ_h) cos θ_h =
+/// cos θ_i.
+std::vector<double> vcavity_bends(double theta_i, double upper) {
+  const double ci = std::cos(theta_i), quarter = kPi / 4;
+  std::vector<double> bends{quarter};
+  if (theta_i >= quarter) bends.push_back(kPi / 2 - theta_i);
+  for (const double sign : {-1.0, 1.0}) {
+    auto lh = [&](double theta_h) { return std::cos(theta_i + sign * theta_h); };
+    auto second = [&](double t) { return lh(t) * (4 * std::cos(t) * std::cos(t) - 1) - 2 * std::cos(t) * ci; };
+    append_roots(second, 0, std::min(quarter, upper), bends);
+    if (upper > quarter) append_roots([&](double t) { return lh(t) * std::cos(t) - ci; }, quarter, upper, bends);
+  }
+  return bends;
+}
+
+/// ∫ g over [a, b] split at `breaks`: 31-point Kronrod rules on one piece, 15-point ones on several
+/// (pieces between G's kinks are short and smooth: 15 points take them at the same tolerance in
+/// half the evaluations, where one long piece would need bisection).
+template <class G>
+numeric::Estimate integrate_inner(const G& g, double a, double b, const std::vector<double>& breaks) {
+  const bool split = std::any_of(breaks.begin(), breaks.end(), [&](double x) { return x > a && x < b; });
+  return split ? numeric::integrate_pieces<15>(g, a, b, b - a, breaks, kInnerTolerance, kInnerMaxDepth)
+               : numeric::integrate_pieces<31>(g, a, b, b - a, breaks, kInnerTolerance, kInnerMaxDepth);
+}
+
+/// ∫₀^end g(φ) dφ with kinks at `kinks` (< 0: none). Where the horizon cuts (end < π), N·V ∝
+/// end − φ near the end, and a BRDF with a power of N·V (Ward's 1/√(N·V)) has a root
+/// singularity there that bisection refines to its depth limit: φ = end·u(2 − u), end − φ =
+/// end·(1 − u)², makes it smooth in u.
+template <class G>
+numeric::Estimate integrate_azimuth(const G& g, double end, const std::array<double, 2>& kinks) {
+  if (!(end > 0)) return {};
+  if (end >= kPi) return integrate_inner(g, 0, end, {kinks.begin(), kinks.end()});
+  auto in_u = [&](double u) { return g(end * u * (2 - u)) * 2 * end * (1 - u); };
+  std::vector<double> kinks_u;
+  for (const double phi : kinks)
+    if (phi > 0 && phi < end) kinks_u.push_back(1 - std::sqrt(1 - phi / end));
+  return integrate_inner(in_u, 0, 1, kinks_u);
 }
 
 template <class F>
@@ -81,6 +144,7 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
     const double kappa = (ci / (2 * ch) - ci * ch) / (si * sh);
     return kappa >= 1 ? 0.0 : (kappa <= -1 ? kPi : std::acos(kappa));
   };
+  std::size_t inner_evaluations = 0;
   auto outer = [&](double theta_h) {
     check_interrupt();  // per outer node: each is an inner adaptive integral over φ_h
     const double ch = std::cos(theta_h), sh = std::sin(theta_h);
@@ -101,27 +165,38 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
       }
       return v.z > 0 && lh > 0 ? 4 * lh * v.z * f_at(l, v, theta_h) : 0.0;
     };
-    const auto [g1, g2] = shape.vcavity && si * sh > 0 ? vcavity_kinks(ci, si, ch, sh) : std::pair{-1.0, -1.0};
-    return sh * numeric::integrate_pieces(inner, 0, end, end, {g1, g2}, kInnerTolerance, kInnerMaxDepth).value;
+    const auto kinks = shape.vcavity && si * sh > 0 ? vcavity_kinks(ci, si, ch, sh) : std::array{-1.0, -1.0};
+    const auto e = integrate_azimuth(inner, end, kinks);
+    inner_evaluations += e.evaluations;
+    return sh * e.value;
   };
   const double upper = (kPi / 2 + theta_i) / 2;      // beyond, V is below the horizon for every φ_h
   const double horizon_starts = (kPi / 2 - theta_i) / 2;
-  // With a V-cavity G the outer integrand also bends where G's kinks enter the φ range: at
-  // θ_h = 90° − θ_i (2(N·H)(N·L) = V·H reaches φ = 0) and, at normal incidence, θ_h = 30°.
-  const double g_kink = shape.vcavity ? (si > 0 ? kPi / 2 - theta_i : kPi / 6) : -1.0;
-  const auto e = numeric::integrate_pieces(outer, 0, upper, shape.width, {horizon_starts, shape.support, g_kink},
-                                           kOuterTolerance, 10);
-  return {2 * e.value, 2 * e.error};
+  // With a V-cavity G the outer integrand also bends where G's kinks enter or leave the φ range
+  // (vcavity_bends) and, at normal incidence, at θ_h = 30°.
+  std::vector<double> breaks{horizon_starts, shape.support};
+  if (shape.vcavity && si > 0) {
+    for (const double theta_h : vcavity_bends(theta_i, upper)) breaks.push_back(theta_h);
+  } else if (shape.vcavity) {
+    breaks.push_back(kPi / 6);
+  }
+  // Smoothed ends: at the horizon's start and end, φ_max moves as a root of θ_h, and so does a kink
+  // entering the φ range, which puts a (θ_h − θ₀)^(3/2) into the outer integrand there.
+  const auto e = numeric::integrate_pieces(outer, 0, std::min(upper, shape.support), shape.width, breaks,
+                                           kOuterTolerance, 10, numeric::Ends::smoothed);
+  return {2 * e.value, 2 * e.error, inner_evaluations};
 }
 
 /// A formula BRDF's width: the θ_h where f at normal incidence (L = N, V at 2θ_h) first falls to
-/// half its value at θ_h = 0, to 1e-3 relative (θ_h ∈ [1e-6, π/4]; π/4 if it never does).
+/// half its value at θ_h = 0, to 1e-3 relative (θ_h ∈ [1e-6, π/4]; π/4 if it never does, or if
+/// f(0) ≤ 0: no peak, whose "half" a negative f would fall below at once).
 double formula_brdf_width(const FormulaBrdf& b) {
   auto f = [&](double theta_h) {
     const double c = std::cos(theta_h), c2 = std::cos(2 * theta_h);
     return b.at(1, c2, c, c, c2);
   };
   const double half = f(0) / 2;
+  if (!(half > 0)) return kPi / 4;
   double lo = 1e-6, hi = lo;
   while (hi < kPi / 4 && !(f(hi) < half)) lo = hi, hi = std::min(hi * 1.5, kPi / 4);
   if (!(f(hi) < half)) return kPi / 4;
@@ -145,12 +220,25 @@ double brdf_width(const FullBrdf& brdf) {
       brdf);
 }
 
+/// Cook & Torrance's m (Beckmann's RMS slope), or 0 for another BRDF.
+double beckmann_slope(const FullBrdf& brdf) {
+  if (const auto* ct = std::get_if<CookTorrance>(&brdf)) return ct->m;
+  if (const auto* ct = std::get_if<CookTorrance1982>(&brdf)) return ct->m;
+  return 0;
+}
+
+/// The θ_h beyond which Beckmann's D = exp(−tan²θ_h / m²) / (π m² cos⁴θ_h) is below e^−50
+/// (1 + 50 m²)² ≤ 1e-18 of its peak for m ≤ 1: tan θ_h = m √50. The albedo's outer integral ends
+/// there; before, its pieces beyond (where G's kinks still bend the integrand) cost some 40 % of
+/// every Cook-Torrance albedo.
+double beckmann_support(double m) { return std::atan(m * std::sqrt(50.0)); }
+
 /// ρ of M + f_ms is ρ_M plus f_ms's own albedo, which is separable and known exactly from the table
 /// (EnergyTable::ms_scale): (1 − E(μ_i))₊ · ms_scale.
 Albedo compensated_albedo(const Compensated& model, double theta_i) {
   const Albedo base = albedo(*model.base, theta_i);
   const double lost = std::max(0.0, 1 - model.table->at(std::cos(theta_i)));
-  return {base.value + lost * model.table->ms_scale, base.error_estimate};
+  return {base.value + lost * model.table->ms_scale, base.error_estimate, base.evaluations};
 }
 
 }  // namespace
@@ -190,6 +278,7 @@ Albedo albedo(const Model& model, double theta_i) {
   const auto* formula = std::get_if<FormulaBrdf>(&model.brdf());
   shape.vcavity = std::holds_alternative<CookTorrance>(model.brdf()) ||
                   std::holds_alternative<CookTorrance1982>(model.brdf()) || (formula && formula->has_switches());
+  if (const double m = beckmann_slope(model.brdf()); m > 0) shape.support = beckmann_support(m);
   const Vec3 n{0, 0, 1};
   return half_vector_albedo([&](const Vec3& l, const Vec3& v, double) { return model(n, l, v); }, theta_i, shape);
 }

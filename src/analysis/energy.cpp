@@ -1,6 +1,7 @@
 #include "specula/analysis/energy.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <fmt/format.h>
@@ -21,6 +22,11 @@ namespace {
 // model whose E is noisy or kinked costs at most ~2000 albedos.
 constexpr double kAverageTolerance = 1e-10;
 constexpr unsigned kAverageMaxDepth = 5;
+// The energy table's E_avg (table_average): an absolute tolerance on Simpson's error (the
+// corrected value is 10–100× closer; what is left moves ms_scale, whose effect the table's
+// measured albedo_error includes), and at most 4 halvings of its panels (1/32 wide in s).
+constexpr double kTableAverageTolerance = 1e-7;
+constexpr int kTableAverageLevels = 4;
 
 /// 2∫ (1 − at(μ))₊ μ dμ over the interpolant, exactly: in s = μ^(1/3) each piece is linear in s
 /// times 6 s⁵ ds, a polynomial of degree 6, which 4-point Gauss-Legendre integrates exactly.
@@ -39,8 +45,96 @@ double lost_energy_of_table(const EnergyTable& table) {
   return total;
 }
 
-std::vector<double> albedos_at(const Model& model, std::span<const double> mu) {
-  return parallel_map(mu, [&](double m) { return albedo_at_mu(model, m).value; });
+/// E at each μ, in parallel; adds their integrand evaluations to `evaluations`.
+std::vector<double> albedos_at(const Model& model, std::span<const double> mu, std::size_t& evaluations) {
+  const std::vector<Albedo> albedos = parallel_map(mu, [&](double m) { return albedo_at_mu(model, m); });
+  std::vector<double> values;
+  for (const Albedo& a : albedos) {
+    values.push_back(a.value);
+    evaluations += a.evaluations;
+  }
+  return values;
+}
+
+/// g(s) = 6 s⁵ E(s³), E_avg's integrand in s = μ^(1/3), at a + k(b − a)/4 for k ≤ 4, and
+/// Simpson's rule on it with steps (b − a)/2 and (b − a)/4.
+struct Panel {
+  double a, b;
+  std::array<double, 5> g;
+
+  double coarse() const noexcept { return (b - a) / 6 * (g[0] + 4 * g[2] + g[4]); }
+  double fine() const noexcept { return (b - a) / 12 * (g[0] + 4 * g[1] + 2 * g[2] + 4 * g[3] + g[4]); }
+};
+
+double average_integrand(double s, double e) noexcept { return 6 * std::pow(s, 5) * e; }
+
+/// The panels of width 1/32 whose points are the table's: s = k/128, nodes at even k > 0,
+/// midpoints at odd k, and g(0) = 0.
+std::vector<Panel> table_panels(const std::vector<double>& at_nodes, const std::vector<double>& at_mids) {
+  constexpr std::size_t kSteps = 2 * EnergyTable::kNodes;
+  auto g = [&](std::size_t k) {
+    if (k == 0) return 0.0;
+    return average_integrand(double(k) / kSteps, k % 2 == 0 ? at_nodes[k / 2 - 1] : at_mids[k / 2]);
+  };
+  std::vector<Panel> panels;
+  for (std::size_t k = 0; k < kSteps; k += 4)
+    panels.push_back({double(k) / kSteps, double(k + 4) / kSteps, {g(k), g(k + 1), g(k + 2), g(k + 3), g(k + 4)}});
+  return panels;
+}
+
+/// Each panel's halves, their quarter points evaluated (all of them in parallel).
+std::vector<Panel> split_panels(const Model& model, const std::vector<Panel>& panels, std::size_t& evaluations) {
+  std::vector<Panel> halves;
+  std::vector<double> s, mu;
+  for (const Panel& p : panels) {
+    const double m = (p.a + p.b) / 2;
+    halves.push_back({p.a, m, {p.g[0], 0, p.g[1], 0, p.g[2]}});
+    halves.push_back({m, p.b, {p.g[2], 0, p.g[3], 0, p.g[4]}});
+  }
+  for (const Panel& h : halves)
+    for (const double x : {(3 * h.a + h.b) / 4, (h.a + 3 * h.b) / 4}) {
+      s.push_back(x);
+      mu.push_back(std::max(kMinMu, x * x * x));
+    }
+  const std::vector<double> e = albedos_at(model, mu, evaluations);
+  for (std::size_t i = 0; i < halves.size(); ++i) {
+    halves[i].g[1] = average_integrand(s[2 * i], e[2 * i]);
+    halves[i].g[3] = average_integrand(s[2 * i + 1], e[2 * i + 1]);
+  }
+  return halves;
+}
+
+/// Simpson's value of a panel with Richardson's correction, and the correction: the error of the
+/// uncorrected value, an upper bound on that of the corrected one.
+std::pair<double, double> corrected(const Panel& p) noexcept {
+  const double fine = p.fine(), correction = (fine - p.coarse()) / 15;
+  return {fine + correction, std::abs(correction)};
+}
+
+/// The table's E_avg: adaptive Simpson in s with Richardson's correction, from panels whose points
+/// are the table's own nodes and midpoints. While the corrections add up to more than the
+/// tolerance, the panels whose correction exceeds their share of it are halved (their new points
+/// are new albedos), down to kTableAverageLevels halvings.
+Albedo table_average(const Model& model, const std::vector<double>& at_nodes, const std::vector<double>& at_mids) {
+  Albedo total;
+  std::vector<Panel> open = table_panels(at_nodes, at_mids);
+  for (int level = 0; !open.empty(); ++level) {
+    double open_error = 0;
+    for (const Panel& p : open) open_error += corrected(p).second;
+    const bool settled = total.error_estimate + open_error <= kTableAverageTolerance || level == kTableAverageLevels;
+    std::vector<Panel> unsettled;
+    for (const Panel& p : open) {
+      const auto [value, error] = corrected(p);
+      if (settled || error <= kTableAverageTolerance * (p.b - p.a)) {
+        total.value += value;
+        total.error_estimate += error;
+      } else {
+        unsettled.push_back(p);
+      }
+    }
+    open = unsettled.empty() ? unsettled : split_panels(model, unsettled, total.evaluations);
+  }
+  return total;
 }
 
 /// What makes two models' tables the same: id, origin, parameter values, form and k.
@@ -109,20 +203,30 @@ Albedo albedo_at_mu(const Model& model, double mu) {
 }
 
 Albedo average_albedo(const Model& model) {
-  auto integrand = [&](double s) { return 6 * std::pow(s, 5) * albedo_at_mu(model, std::max(kMinMu, s * s * s)).value; };
+  std::size_t evaluations = 0;
+  auto integrand = [&](double s) {
+    const Albedo e = albedo_at_mu(model, std::max(kMinMu, s * s * s));
+    evaluations += e.evaluations;
+    return average_integrand(s, e.value);
+  };
   const auto e = numeric::integrate_pieces(integrand, 0, 1, 0.25, {0.5}, kAverageTolerance, kAverageMaxDepth);
-  return {e.value, e.error};
+  return {e.value, e.error, evaluations};
 }
 
-EnergyTable energy_table(const Model& base) {
+EnergyTable energy_table(const Model& base, std::size_t* evaluations) {
   std::vector<double> nodes(EnergyTable::kNodes), mids(EnergyTable::kNodes);
   for (std::size_t j = 0; j < nodes.size(); ++j) nodes[j] = EnergyTable::node_mu(j), mids[j] = EnergyTable::midpoint_mu(j);
   EnergyTable table;
-  table.e = albedos_at(base, nodes);
-  const std::vector<double> at_mids = albedos_at(base, mids);
+  std::vector<double> abscissae = nodes;  // nodes and midpoints in one parallel loop
+  abscissae.insert(abscissae.end(), mids.begin(), mids.end());
+  std::size_t spent = 0;
+  const std::vector<double> albedos = albedos_at(base, abscissae, spent);
+  table.e.assign(albedos.begin(), albedos.begin() + std::ptrdiff_t(nodes.size()));
+  const std::vector<double> at_mids(albedos.begin() + std::ptrdiff_t(nodes.size()), albedos.end());
   for (std::size_t j = 0; j < mids.size(); ++j)
     table.interpolation_error = std::max(table.interpolation_error, std::abs(table.at(mids[j]) - at_mids[j]));
-  const Albedo average = average_albedo(base);
+  const Albedo average = table_average(base, table.e, at_mids);
+  if (evaluations) *evaluations = spent + average.evaluations;
   table.e_avg = average.value;
   table.e_avg_error = average.error_estimate;
   table.ms_scale = table.e_avg < 1 ? lost_energy_of_table(table) / (1 - table.e_avg) : 0;

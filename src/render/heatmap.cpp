@@ -9,9 +9,10 @@
 namespace specula::render {
 namespace {
 
-/// "θi = 45°: χ² p = 0.431, passes" ("θi = 0°: f < 0, FAILS" for a negative model), the verdict as
+/// "θi = 45°: χ² p = 0.431, passes" ("θi = 0°: f < 0, FAILS" for a negative model, "f not finite" for inf or NaN), the verdict as
 /// `specula check --sampling` prints it.
 std::string angle_label(const sampling::AngleCheck& angle) {
+  if (angle.non_finite_samples) return fmt::format("θi = {:g}°: f not finite, FAILS", angle.theta_deg);
   if (angle.negative_samples) return fmt::format("θi = {:g}°: f < 0, FAILS", angle.theta_deg);
   return fmt::format("θi = {:g}°: χ² p = {:.3g}, {}", angle.theta_deg, angle.p_value,
                      angle.passes() ? "passes" : "FAILS");

@@ -42,7 +42,7 @@ Vec3 direction(double mu, double phi) noexcept {
 struct BlockTally {
   std::vector<double> histogram;
   double sum = 0, sum_sq = 0, max_weight = 0, min_f = 0;
-  std::size_t valid = 0, outside = 0, mismatches = 0, negative = 0;
+  std::size_t valid = 0, outside = 0, mismatches = 0, negative = 0, non_finite = 0;
 };
 
 BlockTally tally(const SamplerUnderTest& sampler, const Vec3& wi, const Grid& grid, const std::vector<Sample>& samples) {
@@ -50,17 +50,21 @@ BlockTally tally(const SamplerUnderTest& sampler, const Vec3& wi, const Grid& gr
   t.histogram.assign(std::size_t(grid.rows) * grid.cols, 0.0);
   for (const Sample& s : samples) {
     if (s.pdf == 0 && s.weight == 0) continue;  // no sample: counts as weight 0
-    if (!(s.wo.z > 0) || !(s.pdf > 0) || !std::isfinite(s.pdf) || !std::isfinite(s.weight)) {
+    if (!(s.wo.z > 0) || !(s.pdf > 0) || !std::isfinite(s.pdf)) {
       ++t.outside;
       continue;
     }
     const double f = (*sampler.model)(kNormal, wi, s.wo);
+    if (!std::isfinite(f)) {
+      ++t.non_finite;
+      continue;
+    }
     if (f < 0) {
       ++t.negative;
       t.min_f = std::min(t.min_f, f);
       continue;
     }
-    if (s.weight < 0) {
+    if (!(s.weight >= 0) || !std::isfinite(s.weight)) {
       ++t.outside;
       continue;
     }
@@ -240,11 +244,12 @@ AngleCheck check_angle(const SamplerUnderTest& sampler, const SamplingCheckOptio
     sum += t.sum, sum_sq += t.sum_sq;
     a.valid_samples += t.valid, a.outside += t.outside, a.weight_mismatches += t.mismatches;
     a.negative_samples += t.negative;
+    a.non_finite_samples += t.non_finite;
     a.min_f = std::min(a.min_f, t.min_f);
     a.max_weight = std::max(a.max_weight, t.max_weight);
   }
   a.expected.assign(a.observed.size(), 0.0);
-  if (a.negative_samples > 0) return a;  // f < 0: the finding; χ² and albedo mean nothing
+  if (a.f_invalid()) return a;  // f < 0 or not finite: the finding; χ² and albedo mean nothing
   const double n = double(o.samples);
   a.mean_weight = sum / n;
   a.standard_error = std::sqrt(std::max(0.0, sum_sq / n - a.mean_weight * a.mean_weight) / n);
@@ -302,7 +307,7 @@ SamplingCheck check_sampling(const SamplerUnderTest& sampler, const SamplingChec
   const double per_angle = 1 - std::pow(1 - options.alpha, 1.0 / double(options.theta_deg.size()));
   for (std::size_t i = 0; i < options.theta_deg.size(); ++i) {
     result.angles.push_back(check_angle(sampler, options, i, per_angle));
-    if (result.angles.back().negative_samples > 0) break;
+    if (result.angles.back().f_invalid()) break;
   }
   return result;
 }

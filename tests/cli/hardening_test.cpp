@@ -119,9 +119,21 @@ TEST_F(Cli, AnOutputNameOfTheMaximumLengthWorks) {
   EXPECT_THAT(listing(work()), ElementsAre(name));
 }
 
+/// c op c op … c, at most `characters` long.
+std::string chain(const std::string& op, std::size_t characters) {
+  std::string text = "c";
+  while (text.size() + op.size() + 1 <= characters) text += op + "c";
+  return text;
+}
+
+/// A lobe of some 2000 operations per evaluation: the commands below outlast their 1.5 s before
+/// the signal by construction, in any build (a release `eval` of `log` at 3·10⁶ values, or a
+/// 3000² GGX render with one light, finished first on an idle machine).
+std::string costly_lobe() { return "lobe: " + chain("*", 4000); }
+
 // SIGKILL in the middle of a large write: nothing is left, under any name.
 TEST_F(Cli, AKilledEvalLeavesNoFile) {
-  const pid_t pid = start({"eval", "--model", "log", "--cos", "0:1@3000000", "-o", (work() / "e.csv").string()});
+  const pid_t pid = start({"eval", "--model", costly_lobe(), "--cos", "0:1@3000000", "-o", (work() / "e.csv").string()});
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   ::kill(pid, SIGKILL);
   const Result r = finish(pid);
@@ -131,7 +143,9 @@ TEST_F(Cli, AKilledEvalLeavesNoFile) {
 
 TEST_F(Cli, SigintAndSigtermStopARenderWithTheirExitCodesAndNoFile) {
   for (const int signal : {SIGINT, SIGTERM}) {
-    const pid_t pid = start({"render", "--model", "ggx", "--size", "3000x3000", "-o", (work() / "y.exr").string()});
+    std::vector<std::string> args{"render", "--model", costly_lobe(), "--size", "3000x3000", "-o", (work() / "y.exr").string()};
+    for (int light = 0; light < 16; ++light) args.insert(args.end(), {"--light", "dir:-1,1,1"});  // 1.5 s each
+    const pid_t pid = start(args);
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     ::kill(pid, signal);
     const auto stopped = Clock::now();
@@ -145,11 +159,6 @@ TEST_F(Cli, SigintAndSigtermStopARenderWithTheirExitCodesAndNoFile) {
 // A user model checks the stop flag while it is made (the kink search) and inside each integral
 // (issue 23): the work itself stops ("interrupted by signal 2"), not StopSignals' forced exit
 // after its 2 s grace ("specula: stopped" alone, also 130: what these did before).
-std::string chain(const std::string& op, std::size_t characters) {
-  std::string text = "c";
-  while (text.size() + op.size() + 1 <= characters) text += op + "c";
-  return text;
-}
 
 TEST_F(Cli, SigintStopsTheWorkOfAUserModelItself) {
   // 584 nested max(): seconds of kink search per model made.

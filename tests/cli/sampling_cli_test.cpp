@@ -91,10 +91,27 @@ TEST_F(Cli, CheckSamplingOfANegativeModelSaysSoAndStops) {
   EXPECT_TRUE(fs::exists(png));
   const Result json = run({"check", "--model", "brdf: -nl", "--sampling", "--samples", "1000", "--json"});
   EXPECT_EQ(json.code, 1);
-  EXPECT_THAT(json.out, ::testing::HasSubstr("\"negative\": 1000, \"min_f\": -1, \"passes\": false"));
+  EXPECT_THAT(json.out, ::testing::HasSubstr("\"negative\": 1000, \"min_f\": -1, \"non_finite\": 0, \"passes\": false"));
   const Result control = ok({"check", "--model", "brdf: nl", "--sampling", "--samples", "1000", "--theta-i", "0,30"});
   EXPECT_EQ(count_substrings(control.out, "passes"), 2) << control.out;
   EXPECT_EQ(control.out.find("f < 0"), std::string::npos);
+}
+
+// So is a model that is inf or NaN, in text and JSON (null for the numbers JSON has none for).
+TEST_F(Cli, CheckSamplingOfANonFiniteModelSaysSoAndStops) {
+  const Result r = finish_within(start({"check", "--model", "brdf: sqrt(-nl)", "--sampling", "--samples", "1000",
+                                        "--theta-i", "0,30"}),
+                                 std::chrono::seconds(60));
+  EXPECT_EQ(r.code, 1) << r;
+  EXPECT_THAT(r.out, ::testing::HasSubstr(
+                         "0° FAILS: f is inf or NaN at 1000 samples: the model is not finite; the check stops here\n"));
+  EXPECT_EQ(r.out.find("30°"), std::string::npos) << r.out;
+  const Result json = finish_within(start({"check", "--model", "brdf: 1e308", "--sampling", "--samples", "1000",
+                                           "--theta-i", "0", "--json"}),
+                                    std::chrono::seconds(60));
+  EXPECT_EQ(json.code, 1) << json;
+  EXPECT_THAT(json.out, ::testing::HasSubstr("\"albedo\": null"));
+  EXPECT_THAT(json.out, ::testing::HasSubstr("\"non_finite\": 0, \"passes\": false"));
 }
 
 TEST_F(Cli, CheckSamplingRefusesBadInput) {

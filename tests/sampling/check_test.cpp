@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <numbers>
 
 #include "specula/exceptions.h"
@@ -182,6 +183,28 @@ TEST(SamplingCheck, ANegativeModelFailsAtOnceAndStops) {
   ASSERT_EQ(positive.angles.size(), 3u);
   for (const AngleCheck& a : positive.angles) EXPECT_EQ(a.negative_samples, 0u);
   EXPECT_TRUE(positive.passes()) << failures(positive);
+}
+
+// Issue 23: so is a model that is inf or NaN (before, the albedo's quadrature bisected the
+// non-finite integrand without end). `brdf: 1e308` is finite but its albedo is not: the check
+// then runs to its end and fails on the albedo.
+TEST(SamplingCheck, ANonFiniteModelFailsAtOnceAndStops) {
+  SamplingCheckOptions o;
+  o.samples = 1000;
+  o.theta_deg = {0, 30};
+  for (const char* model : {"brdf: 1/(nl-nl)", "brdf: sqrt(-nl)", "lobe: 1/(c-c)"}) {
+    const SamplingCheck c = check_sampling(Sampler(make_model(model)), o);
+    ASSERT_EQ(c.angles.size(), 1u) << model;
+    EXPECT_EQ(c.angles[0].non_finite_samples, o.samples) << model;
+    EXPECT_FALSE(c.passes()) << model;
+  }
+  const SamplingCheck overflow = check_sampling(Sampler(make_model("brdf: 1e308")), o);
+  ASSERT_EQ(overflow.angles.size(), 2u);
+  EXPECT_FALSE(std::isfinite(overflow.angles[0].albedo));
+  EXPECT_FALSE(overflow.passes());
+  const SamplingCheck control = check_sampling(Sampler(make_model("brdf: 1/(nl-nl+1)")), o);
+  for (const AngleCheck& a : control.angles) EXPECT_EQ(a.non_finite_samples, 0u);
+  EXPECT_TRUE(control.passes()) << failures(control);
 }
 
 // Ctrl-C (or a deadline) reaches the χ² cubature inside a row of cells, not only between rows:

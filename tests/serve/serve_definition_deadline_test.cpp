@@ -23,6 +23,10 @@ using specula::testing::Answer;
 using specula::testing::post_json;
 using specula::testing::seconds_since;
 using specula::testing::TestServer;
+using specula::testing::chain;
+using specula::testing::costly_oscillating;
+using specula::testing::exponent;
+using specula::testing::oscillating;
 using ::testing::HasSubstr;
 using Clock = std::chrono::steady_clock;
 
@@ -35,26 +39,15 @@ Limits short_deadline() {
   return limits;
 }
 
-/// c op c op … c, at most `characters` long (4096 is the most a formula may have).
-std::string chain(const std::string& op, std::size_t characters = 4095) {
-  std::string text = "c";
-  while (text.size() + op.size() + 1 <= characters) text += op + "c";
-  return text;
-}
 
-json exponent() { return {{"default", 1}, {"min", 0}, {"min_exclusive", true}, {"max", 1e9}}; }
 
 /// The 4095-character lobe c*c*…*c (its check took 80 s before, its albedo 40 s).
 json long_product() { return {{"kind", "lobe"}, {"form", "rv"}, {"lobe", chain("*")}, {"normalization", "none"}}; }
 
-/// The oscillating lobe with k by quadrature (11–16 s on every route before).
-json oscillating() {
-  return {{"kind", "lobe"}, {"form", "rv"}, {"lobe", "max(0, sin(1000*n*acos(c)))"}, {"normalization", "quadrature"},
-          {"params", {{"n", exponent()}}}};
-}
 
 /// Beyond any deadline by construction, however fast the numerics become: 584 nested max(), each
-/// an argument of the kink search (2–3 s per model made, and a request makes it several times)…
+/// an argument of the kink search (2–3 s per model made, and a request makes it several times),
+/// and costly_oscillating() (serve_support.h).
 json nested_max() {
   std::string lobe;
   for (int i = 0; i < 584; ++i) lobe += "max(";
@@ -63,13 +56,6 @@ json nested_max() {
   return {{"kind", "lobe"}, {"form", "rv"}, {"lobe", lobe}, {"normalization", "none"}, {"params", {{"n", exponent()}}}};
 }
 
-/// …and the oscillating lobe with two lets of 4091 characters (8000 operations per evaluation):
-/// its albedo at 40° is one integral of some 10 s.
-json costly_oscillating() {
-  const std::string sum = chain("+", 4091);
-  return {{"kind", "lobe"}, {"form", "rv"}, {"let", {"a = " + sum, "b = " + sum}},
-          {"lobe", "max(0, sin(1000*acos(c))) + 0*(a + b)"}, {"normalization", "none"}};
-}
 
 const char* const kComputingRoutes[] = {"/api/eval", "/api/normalize", "/api/albedo", "/api/check", "/api/error", "/api/glsl"};
 

@@ -38,9 +38,11 @@ using ::testing::HasSubstr;
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-/// A request that needs far more than any deadline: 8950 angles of GGX cubature (measured
-/// 15.6 s in a release build before requests had deadlines).
-constexpr const char* kHeavyCheck = R"({"model": "ggx", "step": 0.01, "pairs": 1})";
+/// A request that needs far more than any deadline, however fast the numerics become: a check
+/// (albedo at every angle of a 1° grid) of a model whose albedo at one angle takes some 10 s.
+/// (GGX at a 0.01° step, the request this was, took 15.6 s before requests had deadlines and
+/// finished within 5 s once the albedo quadrature was fast.)
+const std::string kHeavyCheck = nlohmann::json{{"model", specula::testing::costly_oscillating()}, {"step", 1}}.dump();
 
 /// The JSON error of an answer's body, or a null value if the body is not a JSON error.
 json error_of(const std::string& body) {
@@ -190,14 +192,17 @@ TEST(ServeDeadline, EveryComputedEndpointStopsAtTheCap) {
   Limits limits;
   limits.request_seconds = 0.2;  // short, so that each endpoint's heaviest request is well past it (≥ 1 s here)
   TestServer server(limits);
+  const std::string heavy_albedo = json{{"model", specula::testing::costly_oscillating()}, {"theta", "0:89@200"}}.dump();
+  // 2000 k by quadrature of a lobe that takes some 0.1 s each: the start of a fit computes its data.
+  const std::string heavy_fit = json{{"model", specula::testing::oscillating()}, {"n", "1:1000@2000"}}.dump();
   const std::pair<const char*, const char*> heavy[] = {
-      {"/api/check", kHeavyCheck},
+      {"/api/check", kHeavyCheck.c_str()},
       {"/api/check", R"({"model": "ggx", "sweep": "alpha", "values": "0.1:0.9@50", "pairs": 100000, "step": 45})"},
-      {"/api/albedo", R"({"model": "ggx", "theta": "0:89@200"})"},
+      {"/api/albedo", heavy_albedo.c_str()},
       {"/api/albedo", R"({"model": "ggx", "theta": "0:80@10", "method": "monte-carlo", "samples": 1000000})"},
       {"/api/normalize", R"({"model": "gauss", "n": "1:1000@50", "condition": "strict", "step": 0.01})"},
       {"/api/error", R"({"model": "log", "n": "1:10000@2000:log"})"},
-      {"/api/fit", R"({"model": "gauss", "n": "1:1000@2000"})"},
+      {"/api/fit", heavy_fit.c_str()},
   };
   for (const auto& [path, body] : heavy) {
     const auto start = Clock::now();

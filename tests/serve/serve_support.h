@@ -193,6 +193,31 @@ class RawConnection {
   std::string pending_;
 };
 
+/// c op c op … c, at most `characters` long (4096 is the most a formula may have).
+inline std::string chain(const std::string& op, std::size_t characters = 4095) {
+  std::string text = "c";
+  while (text.size() + op.size() + 1 <= characters) text += op + "c";
+  return text;
+}
+
+inline nlohmann::json exponent() { return {{"default", 1}, {"min", 0}, {"min_exclusive", true}, {"max", 1e9}}; }
+
+/// An oscillating lobe with k by quadrature: some 0.1 s per k (release), 11–16 s per request on
+/// every route before requests had deadlines.
+inline nlohmann::json oscillating() {
+  return {{"kind", "lobe"}, {"form", "rv"}, {"lobe", "max(0, sin(1000*n*acos(c)))"}, {"normalization", "quadrature"},
+          {"params", {{"n", exponent()}}}};
+}
+
+/// A definition object beyond any deadline by construction, however fast the numerics become: an
+/// oscillating lobe with two lets of 4091 characters (8000 operations per evaluation), whose
+/// albedo at one angle is a single integral of some 10 s in a release build.
+inline nlohmann::json costly_oscillating() {
+  const std::string sum = chain("+", 4091);
+  return {{"kind", "lobe"}, {"form", "rv"}, {"let", {"a = " + sum, "b = " + sum}},
+          {"lobe", "max(0, sin(1000*acos(c))) + 0*(a + b)"}, {"normalization", "none"}};
+}
+
 /// Seconds since `start`.
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -9,6 +9,7 @@
 //   - lobes in `nh` form and full BRDFs: over the half vector H = (θ_h, φ_h), V = 2(L·H)H − L,
 //     dω_V = 4 (L·H) dω_H; φ_h up to the closed-form horizon crossing, θ_h split at the lobe's
 //     width and where the horizon starts and stops cutting.
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -19,6 +20,7 @@ namespace specula::analysis {
 struct Albedo {
   double value = 0;
   double error_estimate = 0;
+  std::size_t evaluations = 0;  ///< of the BRDF or lobe by the cubature
 };
 
 /// ρ at the light's polar angle theta_i (radians, [0, π/2)).

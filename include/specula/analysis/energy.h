@@ -25,9 +25,12 @@ inline constexpr double kMinMu = 1e-9;
 /// where E bends near grazing): ≥ 8 digits, as E itself. Sequential; ~100-250 albedos.
 Albedo average_albedo(const Model& model);
 
-/// The energy table of `base` (EnergyTable: nodes and midpoints in parallel, E_avg, the measured
-/// interpolation error), deterministic for any thread count.
-EnergyTable energy_table(const Model& base);
+/// The energy table of `base` (EnergyTable: nodes and midpoints in parallel, the measured
+/// interpolation error, and E_avg by adaptive Simpson in s with Richardson's correction, to 1e-7,
+/// from panels whose points are those nodes and midpoints, halved where that is not enough, each
+/// level's new points in parallel), deterministic for any thread count. `evaluations`, if given,
+/// receives the integrand evaluations of all its albedos.
+EnergyTable energy_table(const Model& base, std::size_t* evaluations = nullptr);
 /// energy_table(base), made once per model (id, origin, parameter values, form, k) and kept.
 std::shared_ptr<const EnergyTable> cached_energy_table(const Model& base);
 /// Forgets the cached tables (the registry does when user models are cleared).

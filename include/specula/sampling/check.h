@@ -17,8 +17,9 @@
 //   - ∫ pdf over the hemisphere ≤ 1 + 1e-5 (+ the cubature's error estimate);
 //   - the mean weight equals the cubature albedo ρ(θ_i) within z_θ standard errors (z_θ the
 //     normal quantile of the same α_θ, two-sided) plus 1e-8 ρ.
-// A model with f < 0 at a sample fails there at once: a negative density cannot be sampled, and
-// the χ² and albedo checks mean nothing for it, so the check stops at that angle.
+// A model with f < 0 or f not finite (inf, NaN) at a sample fails there at once: such a density
+// cannot be sampled, and the χ² and albedo checks mean nothing for it, so the check stops at that
+// angle.
 // Deterministic for a seed: samples come in blocks with seeds of their own, whatever the threads.
 #include <cstdint>
 #include <string>
@@ -55,6 +56,7 @@ struct AngleCheck {
   std::size_t unexpected_samples = 0;  ///< samples in cells the cubature found empty (pooled)
   std::size_t negative_samples = 0;    ///< samples where f < 0: nothing else is checked then
   double min_f = 0;                    ///< the least f among them
+  std::size_t non_finite_samples = 0;  ///< samples where f is inf or NaN: nothing else is checked then
   double max_weight = 0;
   /// cos_bins × 2 cos_bins histograms, row-major (cos θ_o rows from the horizon up, φ columns).
   std::vector<double> observed, expected;
@@ -62,8 +64,9 @@ struct AngleCheck {
   bool chi2_passes() const noexcept { return p_value >= alpha; }
   bool albedo_agrees() const noexcept;
   bool pdf_normalized() const noexcept { return pdf_integral <= 1 + pdf_integral_error + 1e-5; }
+  bool f_invalid() const noexcept { return negative_samples > 0 || non_finite_samples > 0; }
   bool passes() const noexcept {
-    return negative_samples == 0 && chi2_passes() && albedo_agrees() && pdf_normalized() && outside == 0 &&
+    return !f_invalid() && chi2_passes() && albedo_agrees() && pdf_normalized() && outside == 0 &&
            weight_mismatches == 0 && uncovered_nodes == 0;
   }
 };
