@@ -42,7 +42,7 @@
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/lobes/lobes.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace {
 

@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "specula/lobes/lobes.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace {
 

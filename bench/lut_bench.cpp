@@ -19,6 +19,7 @@
 
 #include "specula/analysis/energy.h"
 #include "specula/brdf/ggx.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Normalization cost per n: the closed forms (ns per call) and quadrature (µs per call).
 //
-// normalize::log_rv takes different branches with a = 2 ln 2/n: the series in a for a ≤ 1
+// lobes::log_rv takes different branches with a = 2 ln 2/n: the series in a for a ≤ 1
 // (n ≥ 2 ln 2 ≈ 1.386; slowest to converge near a = 1, fastest for huge n), and e^x E₁(x) for
 // a > 1, by Boost's expint for x ≤ 50 and by an asymptotic series beyond (n ≲ 0.11 for 4a,
 // n ≲ 0.028 for a). The single-n benchmarks pin one branch each; `paper50` is the mix a table
@@ -100,16 +100,16 @@ void register_quadrature(const char* family) {
 [[maybe_unused]] const bool registered = [] {
   // a = 2 ln 2/n: 1386 (asymptotic, both), 139 (asymptotic, both), 13.9 (expint / asymptotic
   // for 4a), 1.39 (expint), 0.99 (series, near its worst), then ever faster series.
-  register_closed_form<normalize::log_rv>(
+  register_closed_form<lobes::log_rv>(
       "log_rv",
       {{"0.001", 1e-3}, {"0.01", 1e-2}, {"0.1", 0.1}, {"1", 1.0}, {"1.4", 1.4}, {"2", 2.0},
        {"20", 20.0}, {"1000", 1000.0}, {"1e6", 1e6}, {"1e9", 1e9}},
       true);
-  register_closed_form<normalize::schlick_rv>(
+  register_closed_form<lobes::schlick_rv>(
       "schlick_rv",
       {{"0.001", 1e-3}, {"0.75", 0.75}, {"1", 1.0}, {"20", 20.0}, {"1000", 1000.0}, {"1e9", 1e9}},
       true);
-  register_closed_form<normalize::blinn_phong_nh>("blinn_phong_nh", {{"20", 20.0}}, false);
+  register_closed_form<lobes::blinn_phong_nh>("blinn_phong_nh", {{"20", 20.0}}, false);
 
   register_quadrature<lobes::Log>("log");
   register_quadrature<lobes::Power>("power");

@@ -8,6 +8,7 @@
 #include <string>
 #include <tbb/global_control.h>
 
+#include "specula/catalogue/catalogue.h"
 #include "specula/render/render.h"
 #include "specula/render/scene.h"
 

@@ -14,6 +14,7 @@
 
 #include <chrono>
 
+#include "specula/catalogue/catalogue.h"
 #include "specula/gl/context.h"
 #include "specula/gl/render_gl.h"
 #include "specula/render/render.h"
@@ -24,8 +25,8 @@ using namespace specula;
 
 render::Scene comparison_scene() {
   render::Scene scene = render::default_scene(make_model("log-normalized", {{"n", 50}}));
-  scene.lights = {render::parse_light("dir:-1,1,1"), render::parse_light("dir:1,0.5,1"),
-                  render::parse_light("point:0,3,3")};
+  scene.lights = {render::Light{.direction = {-1, 1, 1}}, render::Light{.direction = {1, 0.5, 1}},
+                  render::Light{.kind = render::LightKind::point, .position = {0, 3, 3}}};
   return scene;
 }
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/sampling/sampler.h"
 
 namespace {

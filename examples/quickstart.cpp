@@ -1,8 +1,8 @@
 // Quickstart: the log lobe with its exact normalization, as a BRDF and as a bare lobe.
 #include <cstdio>
 
+#include <specula/catalogue/catalogue.h>
 #include <specula/lobes/log.h>
-#include <specula/models/model.h>
 
 int main() {
   const specula::Model model = specula::make_model("log-normalized", {{"n", 20}});

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 
 namespace {
 

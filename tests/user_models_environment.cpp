@@ -4,7 +4,7 @@
 // dialect, GL against CPU renders — covers user-defined models as it covers the built-in ones.
 #include <gtest/gtest.h>
 
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 
 namespace {
 

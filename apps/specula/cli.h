@@ -8,7 +8,7 @@
 
 #include "specula/io/table.h"
 #include "specula/io/values.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/queries/queries.h"
 
 namespace specula::cli {

@@ -70,7 +70,7 @@ std::string text_report(const std::vector<queries::CheckCase>& cases, double las
     if (!r.conserves_energy)
       out += fmt::format(": reflects {:.4g} % more than it receives at θ_i = {:.6g}°",
                          100 * (r.max_albedo.value - 1), r.max_albedo.theta_deg);
-    const auto* compensated = m.is_lobe() ? nullptr : std::get_if<Compensated>(&m.brdf());
+    const Compensated* compensated = m.compensated();
     if (compensated && !compensated->table->compensates())
       out += "\n  energy compensation         does not apply: the base model reflects more than it receives";
     else if (compensated)

@@ -8,8 +8,9 @@
 #include <set>
 
 #include "cli.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/gl/render_gl.h"
-#include "render_options.h"
+#include "scene_options.h"
 #include "specula/exceptions.h"
 #include "specula/render/image_io.h"
 #include "specula/render/panel.h"
@@ -23,11 +24,7 @@ struct CompareOptions {
   std::vector<std::string> params;
   std::string form;
   std::string diff;
-  std::string size = "384x384";
-  std::vector<std::string> lights;
-  std::string diffuse, specular, ambient;
-  double exposure = 0;
-  std::string tone_map = "none";
+  SceneOptions scene;  ///< --size, --light, the colours, --exposure, --tonemap
   std::optional<double> scale;
   std::string backend = "cpu";
   std::string out;
@@ -105,13 +102,7 @@ std::string label_of(const Model& m, bool form_given) {
 }
 
 render::Scene scene_of(const Model& model, const CompareOptions& o) {
-  render::Scene scene = render::default_scene(model);
-  if (!o.lights.empty()) scene.lights.clear();
-  for (const auto& spec : o.lights) scene.lights.push_back(render::parse_light(spec));
-  render::Material& m = scene.material;
-  m.diffuse = colour_of("--diffuse", o.diffuse, m.diffuse);
-  m.specular = colour_of("--specular", o.specular, m.specular);
-  m.ambient = colour_of("--ambient", o.ambient, m.ambient);
+  render::Scene scene = render::make_scene(model, o.scene.description());
   render::validate(scene);
   return scene;
 }
@@ -137,13 +128,12 @@ std::map<std::string, render::Image, std::less<>> render_all(const Models& m, co
 }
 
 render::Metadata metadata_of(const Models& m, const CompareOptions& o, const render::Scene& scene, double scale_max) {
-  std::vector<std::string> ids, params, lights;
+  std::vector<std::string> ids, params;
   for (const auto& model : m.panels) {
     ids.emplace_back(model.id());
     params.push_back(fmt::format("{}: {}", model.id(), parameters_text(model, "=", ",")));
   }
-  for (const auto& light : scene.lights) lights.push_back(render::to_string(light));
-  return {{"Software", "specula"},
+  render::Metadata meta{{"Software", "specula"},
           {"figure", "compare"},
           {"models", fmt::format("{}", fmt::join(ids, ","))},
           {"parameters", fmt::format("{}", fmt::join(params, "; "))},
@@ -152,13 +142,11 @@ render::Metadata metadata_of(const Models& m, const CompareOptions& o, const ren
           {"heatmap", m.reference ? "abs difference of linear luminance Y = 0.2126 R + 0.7152 G + 0.0722 B" : "-"},
           {"scale_max", m.reference ? io::format_number(scale_max) : "-"},
           {"renderer", o.backend},
-          {"size", o.size},
-          {"lights", fmt::format("{}", fmt::join(lights, " "))},
-          {"diffuse", rgb_text(scene.material.diffuse)},
-          {"specular", rgb_text(scene.material.specular)},
-          {"ambient", rgb_text(scene.material.ambient)},
-          {"exposure", io::format_number(o.exposure)},
-          {"tonemap", o.tone_map}};
+          {"size", o.scene.size}};
+  const render::Metadata lit = scene_metadata(scene);
+  meta.insert(meta.end(), lit.begin(), lit.end());
+  meta.insert(meta.end(), {{"exposure", io::format_number(o.scene.exposure)}, {"tonemap", o.scene.tone_map}});
+  return meta;
 }
 
 std::string summary_line(const Model& model, const render::Image& image, const render::LuminanceDifference* d,
@@ -176,13 +164,15 @@ std::string summary_line(const Model& model, const render::Image& image, const r
   return line;
 }
 
-void check_plain_options(const CompareOptions& o) {
+// The output, the display and the heat maps' scale: what needs no model. Returns the display.
+render::Display check_plain_options(const CompareOptions& o) {
   if (render::image_format(o.out) != render::ImageFormat::png)
     throw InvalidArgument(fmt::format("compare writes an 8-bit PNG: '{}' is not a .png file name", o.out));
-  if (!std::isfinite(o.exposure)) throw InvalidArgument(fmt::format("--exposure {} is not finite", o.exposure));
+  const render::Display display = o.scene.display();
   if (o.scale && o.diff.empty()) throw InvalidArgument("--scale sets the heat maps' scale: it needs --diff REF");
   if (o.scale && !(std::isfinite(*o.scale) && *o.scale > 0))
     throw InvalidArgument(fmt::format("--scale {} must be finite and > 0", *o.scale));
+  return display;
 }
 
 // PanelGeometry refuses a figure too large to write: find out before rendering.
@@ -192,9 +182,8 @@ void check_figure_fits(const Models& m, const render::RenderSettings& settings) 
 }
 
 void run_compare(const CompareOptions& o) {
-  check_plain_options(o);
-  const render::Display display{o.exposure, render::parse_tone_map(o.tone_map)};
-  const render::RenderSettings settings = settings_of(o.size);
+  const render::Display display = check_plain_options(o);
+  const render::RenderSettings settings = o.scene.settings();
   const Models m = models_of(o);
   const render::Scene scene = scene_of(m.panels.front(), o);  // checks lights and colours before any work
   check_figure_fits(m, settings);
@@ -226,15 +215,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--form", o->form, "rv or nh for the lobe models; default: each model's own")
       ->check(CLI::IsMember({"rv", "nh"}));
   cmd->add_option("--diff", o->diff, "Reference model id: add heat maps of each panel's |ΔL| against it");
-  cmd->add_option("--size", o->size, "Size of each panel, WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--light", o->lights,
-                  "dir:x,y,z[:r,g,b[:intensity]] or point:x,y,z[:r,g,b[:intensity]]; repeatable; default dir:-1,1,1");
-  cmd->add_option("--diffuse", o->diffuse, "Diffuse albedo r,g,b (default 0.55,0.12,0.1)");
-  cmd->add_option("--specular", o->specular, "Specular colour r,g,b: scales the model's f (default 0.4,0.4,0.4)");
-  cmd->add_option("--ambient", o->ambient, "Ambient radiance r,g,b (default 0.03,0.03,0.03)");
-  cmd->add_option("--exposure", o->exposure, "Scale the radiance by 2^STOPS before display")->capture_default_str();
-  cmd->add_option("--tonemap", o->tone_map, "none (clamp) or aces (Narkowicz's fit)")->capture_default_str()
-      ->check(CLI::IsMember({"none", "aces"}));
+  o->scene.add_to(*cmd, Picture::compare);
   cmd->add_option("--scale", o->scale, "Top of the heat maps' colour scale (default: the largest |ΔL| shown)");
   cmd->add_option("--backend", o->backend, "cpu (the reference renderer) or gl (OpenGL through EGL: a GPU, or Mesa's llvmpipe)")
       ->capture_default_str()

@@ -80,9 +80,11 @@ fit::Options search_options(const FitOptions& o) {
   s.constants = fit::parse_constants(o.constants);
   s.weights = fit::SizeWeights::parse(o.weights);
   s.metric = fit::parse_metric(o.metric);
-  if (o.split != "random" && o.split != "last")
-    throw InvalidArgument(fmt::format("--split must be random or last, got '{}'", o.split));
-  s.split = o.split == "last" ? fit::Split::last : fit::Split::random;
+  const std::optional<fit::Split> split = fit::split_named(o.split);
+  if (!split)
+    throw InvalidArgument(fmt::format("--split must be {}, got '{}'",
+                                      names_listed<fit::Split, fit::kSplitCount>(fit::split_name), o.split));
+  s.split = *split;
   s.choice = fit::parse_choice(o.choose);
   s.max_generations = o.generations;
   s.max_evaluations = o.evaluations;
@@ -209,10 +211,13 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(1, fit::OptionRanges::max_size));
   cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\" over the --ops names")
       ->capture_default_str();
-  cmd->add_option("--metric", o->metric, "rms | mae | max-abs | mean-relative | r2")->capture_default_str();
+  cmd->add_option("--metric", o->metric, names_listed<fit::Metric, fit::kMetricCount>(fit::metric_name, " | ", " | "))
+      ->capture_default_str();
   cmd->add_option("--test-fraction", o->search.test_fraction, "Rows held out for the test error, in [0, 1)")
       ->capture_default_str();
-  cmd->add_option("--split", o->split, "Which rows are held out: random | last")->capture_default_str();
+  cmd->add_option("--split", o->split,
+                  "Which rows are held out: " + names_listed<fit::Split, fit::kSplitCount>(fit::split_name, " | ", " | "))
+      ->capture_default_str();
   cmd->add_option("--seed", o->search.seed, "Seed of the search and of the random split")->capture_default_str();
   cmd->add_option("--time", o->search.time_limit_s, "Time budget in seconds, (0, 1e6]; Ctrl-C stops at once")
       ->capture_default_str()->check(CLI::Range(1e-9, fit::OptionRanges::time_s));
@@ -228,7 +233,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--enumerate-size", o->search.enumerate_max_size,
                   "Enumerate every distinct form up to this size first, [0, 30] (at most 20000 forms)")
       ->capture_default_str()->check(CLI::Range(0, fit::OptionRanges::enumerate_size));
-  cmd->add_option("--choose", o->choose, "Which front formula is the answer: parsimonious | knee | best")
+  cmd->add_option("--choose", o->choose,
+                  "Which front formula is the answer: " +
+                      names_listed<fit::Choice, fit::kChoiceCount>(fit::choice_name, " | ", " | "))
       ->capture_default_str();
   cmd->add_option("--choose-factor", o->search.choose_factor,
                   "parsimonious: the smallest formula within this factor of the best error")

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "cli.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace specula::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include <tbb/info.h>
 
 #include "cli.h"
-#include "render_options.h"
+#include "scene_options.h"
 #include "specula/exceptions.h"
 #include "specula/gl/render_gl.h"
 #include "specula/render/environment.h"
@@ -20,12 +20,7 @@ namespace {
 
 struct RenderOptions {
   ModelOptions model;
-  std::string scene = "sphere";
-  std::string size = "512x512";
-  std::vector<std::string> lights;
-  std::string diffuse, specular, ambient;
-  double exposure = 0;
-  std::string tone_map = "none";
+  SceneOptions scene;  ///< --scene, --size, --light, the colours, --exposure, --tonemap
   std::string exr_pixel = "half";
   std::string backend = "cpu";
   std::string env;  ///< empty: lit by the lights; "white" or an image file
@@ -35,29 +30,17 @@ struct RenderOptions {
   bool verbose = false;
 };
 
-/// The white furnace shows the bare model: specular 1, no diffuse or ambient term.
-void use_furnace_material(render::Material& m) {
-  m.diffuse = {0, 0, 0};
-  m.specular = {1, 1, 1};
-  m.ambient = {0, 0, 0};
-}
-
 render::Scene scene_of(const RenderOptions& o) {
-  render::Scene scene = render::default_scene(o.model.make());
-  if (!o.env.empty()) scene.lights.clear();
-  if (o.env == "white") use_furnace_material(scene.material);
-  if (o.scene != "sphere") {
-    scene.spheres.clear();
-    scene.triangles = render::load_obj(o.scene);
-    scene.camera = render::framing(scene.triangles);
+  const Model model = o.model.make();
+  render::SceneDescription d = o.scene.description();
+  if (!o.env.empty() && !d.lights) d.lights.emplace();  // the environment is the only light
+  if (o.env == "white") {
+    // The white furnace shows the bare model: specular 1, no diffuse or ambient term.
+    d.diffuse = d.diffuse.value_or(render::Rgb{0, 0, 0});
+    d.specular = d.specular.value_or(render::Rgb{1, 1, 1});
+    d.ambient = d.ambient.value_or(render::Rgb{0, 0, 0});
   }
-  if (!o.lights.empty()) scene.lights.clear();
-  for (const auto& spec : o.lights) scene.lights.push_back(render::parse_light(spec));
-  render::Material& m = scene.material;
-  m.diffuse = colour_of("--diffuse", o.diffuse, m.diffuse);
-  m.specular = colour_of("--specular", o.specular, m.specular);
-  m.ambient = colour_of("--ambient", o.ambient, m.ambient);
-  return scene;
+  return render::make_scene(model, std::move(d));
 }
 
 // What rendered the image: "cpu", or the GL renderer's description (render_gl).
@@ -69,27 +52,22 @@ struct Rendered {
 render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o, const Rendered& rendered,
                              bool with_display) {
   const Model& model = scene.material.model;
-  std::vector<std::string> params, lights;
+  std::vector<std::string> params;
   for (std::size_t i = 0; i < model.params().size(); ++i)
     params.push_back(fmt::format("{}={}", model.info().params[i].name, io::format_number(model.params()[i])));
-  for (const auto& light : scene.lights) lights.push_back(render::to_string(light));
   render::Metadata meta{{"Software", "specula"},
                         {"model", std::string(model.id())},
                         {"parameters", fmt::format("{}", fmt::join(params, ","))},
                         {"form", model.is_lobe() ? to_string(model.form()) : "-"}};
   if (model.is_lobe()) meta.emplace_back("coef", io::format_number(model.coef()));
-  meta.insert(meta.end(), {{"renderer", o.backend},
-                           {"scene", o.scene},
-                           {"size", o.size},
-                           {"lights", fmt::format("{}", fmt::join(lights, " "))},
-                           {"diffuse", rgb_text(scene.material.diffuse)},
-                           {"specular", rgb_text(scene.material.specular)},
-                           {"ambient", rgb_text(scene.material.ambient)}});
+  meta.insert(meta.end(), {{"renderer", o.backend}, {"scene", o.scene.mesh}, {"size", o.scene.size}});
+  const render::Metadata lit = scene_metadata(scene);
+  meta.insert(meta.end(), lit.begin(), lit.end());
   if (!o.env.empty())
     meta.insert(meta.end(), {{"environment", o.env}, {"samples", std::to_string(o.samples)}, {"seed", std::to_string(o.seed)}});
   if (!rendered.gl_renderer.empty()) meta.emplace_back("gl-renderer", rendered.gl_renderer);
   if (with_display)
-    meta.insert(meta.end(), {{"exposure", io::format_number(o.exposure)}, {"tonemap", o.tone_map}});
+    meta.insert(meta.end(), {{"exposure", io::format_number(o.scene.exposure)}, {"tonemap", o.scene.tone_map}});
   return meta;
 }
 
@@ -100,7 +78,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 /// With --env: the uniform white furnace or the probe of the file; none without.
 std::optional<render::Environment> environment_of(const RenderOptions& o) {
   if (o.env.empty()) return std::nullopt;
-  if (!o.lights.empty()) throw InvalidArgument("--light cannot be combined with --env: the environment is the only light");
+  if (!o.scene.lights.empty()) throw InvalidArgument("--light cannot be combined with --env: the environment is the only light");
   if (o.backend != "cpu") throw InvalidArgument("--env renders on the cpu backend only");
   if (o.env == "white") return render::Environment::uniform({1, 1, 1});
   return render::read_environment(o.env);
@@ -128,12 +106,11 @@ std::string lighting_text(const RenderOptions& o, const render::Scene& scene) {
 
 void run_render(const RenderOptions& o) {
   const render::ImageFormat format = render::image_format(o.out);
-  if (!std::isfinite(o.exposure)) throw InvalidArgument(fmt::format("--exposure {} is not finite", o.exposure));
-  const render::Display display{o.exposure, render::parse_tone_map(o.tone_map)};
-  if (format == render::ImageFormat::exr && (o.exposure != 0 || display.tone_map != render::ToneMap::none))
+  const render::Display display = o.scene.display();
+  if (format == render::ImageFormat::exr && (display.exposure != 0 || display.tone_map != render::ToneMap::none))
     throw InvalidArgument("--exposure and --tonemap shape 8-bit output; an EXR holds the linear radiance as rendered");
-  const render::ExrPixel exr_pixel = render::parse_exr_pixel(o.exr_pixel);
-  const render::RenderSettings settings = settings_of(o.size);
+  const render::ExrPixel exr_pixel = parse_exr_pixel(o.exr_pixel);
+  const render::RenderSettings settings = o.scene.settings();
   const render::Scene scene = scene_of(o);
   const std::optional<render::Environment> environment = environment_of(o);
 
@@ -158,17 +135,7 @@ void add_render_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a sphere or an OBJ mesh shaded with a model");
   o->model.add_to(*cmd);
   o->model.add_coef_to(*cmd);
-  cmd->add_option("--scene", o->scene, "sphere (a unit sphere) or an OBJ file, framed from +z")->capture_default_str();
-  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT, each in [1, 16384]")->capture_default_str();
-  cmd->add_option("--light", o->lights,
-                  "dir:x,y,z[:r,g,b[:intensity]] (x,y,z toward the light; E = colour·intensity) or\n"
-                  "point:x,y,z[:r,g,b[:intensity]] (E = colour·intensity/d²); repeatable; default dir:-1,1,1");
-  cmd->add_option("--diffuse", o->diffuse, "Diffuse albedo r,g,b (default 0.55,0.12,0.1)");
-  cmd->add_option("--specular", o->specular, "Specular colour r,g,b: scales the model's f (default 0.4,0.4,0.4)");
-  cmd->add_option("--ambient", o->ambient, "Ambient radiance r,g,b, reflected as ambient·diffuse (default 0.03,0.03,0.03)");
-  cmd->add_option("--exposure", o->exposure, "PNG: scale the radiance by 2^STOPS")->capture_default_str();
-  cmd->add_option("--tonemap", o->tone_map, "PNG: none (clamp) or aces (Narkowicz's fit)")->capture_default_str()
-      ->check(CLI::IsMember({"none", "aces"}));
+  o->scene.add_to(*cmd, Picture::render);
   cmd->add_option("--exr-pixel", o->exr_pixel, "EXR samples: half or float")->capture_default_str()
       ->check(CLI::IsMember({"half", "float"}));
   cmd->add_option("--backend", o->backend,

@@ -6,10 +6,11 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
+#include "build_info.h"
 #include "cli.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "stop_signals.h"
 
 namespace {
@@ -20,6 +21,9 @@ int run(int argc, char** argv) {
                "Run `specula COMMAND --help` for a command's options and an example.",
                "specula"};
   app.require_subcommand(1);
+  // --version: version, commit and SIMD target on one line (exit 0), before any subcommand is due.
+  app.set_version_flag("--version,-V", [] { return specula::cli::version_line(); },
+                       "Print the version, the git commit and the SIMD target, and exit");
   // --models FILE before or after the command: every command sees the file's models as its own.
   app.fallthrough();
   std::vector<std::string> model_files;

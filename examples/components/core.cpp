@@ -4,7 +4,7 @@
 
 #include <specula/analysis/albedo.h>
 #include <specula/glsl/glsl.h>
-#include <specula/models/model.h>
+#include <specula/catalogue/catalogue.h>
 
 int main() {
   const specula::Model model = specula::make_model("log-normalized", {{"n", 20}});

@@ -6,7 +6,7 @@
 #endif
 
 #include <specula/gl/render_gl.h>
-#include <specula/models/model.h>
+#include <specula/catalogue/catalogue.h>
 #include <specula/render/scene.h>
 
 int main() {

@@ -2,7 +2,7 @@
 // Usage: uses_render OUT.png
 #include <cstdio>
 
-#include <specula/models/model.h>
+#include <specula/catalogue/catalogue.h>
 #include <specula/render/image_io.h>
 #include <specula/render/render.h>
 #include <specula/render/scene.h>

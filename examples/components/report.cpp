@@ -4,7 +4,7 @@
 #include <numbers>
 #include <string>
 
-#include <specula/models/model.h>
+#include <specula/catalogue/catalogue.h>
 #include <specula/report/plot.h>
 
 int main() {

@@ -1,7 +1,13 @@
 #pragma once
 // The one exception type specula throws for bad input (unknown model, parameter out of range,
 // malformed range or expression). The CLI turns it into one line on stderr and exit code 2.
+// Below it, the floor every module stands on for its enums: unreachable() after a switch that
+// lists every enumerator, and the names of an enum from one list (the end of this file).
+#include <array>
+#include <cstddef>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,6 +50,67 @@ inline std::string one_line(std::string_view message) {
     } else out += c;
   }
   return out;
+}
+
+// ---- Enums: their switches and their tables --------------------------------------------------
+//
+// A switch over an enum lists every enumerator and has no default: -Werror=switch (CMakeLists.txt)
+// then fails the build on an enumerator that a switch forgot. Where the function must still end
+// after the switch, it calls unreachable(): only a value outside the enum (a bad cast) gets there.
+//
+// An enum's enumerators are 0, 1, …, count − 1, and the count sits beside the enum:
+//     inline constexpr std::size_t kFormCount = static_cast<std::size_t>(Form::nh) + 1;
+// A table indexed by the enum is a std::array<T, kFormCount>, or is checked against the count by a
+// static_assert. The enum's names are one constexpr switch over every enumerator, returning "" for
+// a value outside the enum; parsing (enum_named), listing (names_listed) and printing all read that
+// switch, and
+//     static_assert(names_complete<Form, kFormCount>([](Form f) { return to_string(f); }));
+// fails the build on a name that is empty or repeated, and on a count that a new enumerator (named
+// in the switch, as -Werror=switch insists) has outgrown.
+
+/// C++23's std::unreachable(), but defined: a value outside its enum reached the end of a switch
+/// that returns for every enumerator. Aborts.
+[[noreturn]] inline void unreachable() noexcept { std::abort(); }
+
+/// Every enumerator of E, in order: E(0), …, E(count − 1).
+template <class E, std::size_t count>
+constexpr std::array<E, count> enumerators() noexcept {
+  std::array<E, count> all{};
+  for (std::size_t i = 0; i < count; ++i) all[i] = static_cast<E>(i);
+  return all;
+}
+
+/// Whether name(E(i)) for i < count are non-empty and distinct and name(E(count)) is "": the names
+/// cover exactly the enumerators 0 … count − 1.
+template <class E, std::size_t count, class Name>
+constexpr bool names_complete(Name name) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string_view text = name(static_cast<E>(i));
+    if (text.empty()) return false;
+    for (std::size_t j = 0; j < i; ++j)
+      if (std::string_view(name(static_cast<E>(j))) == text) return false;
+  }
+  return std::string_view(name(static_cast<E>(count))).empty();
+}
+
+/// The enumerator whose name(e) is `text`, if any.
+template <class E, std::size_t count, class Name>
+constexpr std::optional<E> enum_named(std::string_view text, Name name) {
+  for (std::size_t i = 0; i < count; ++i)
+    if (std::string_view(name(static_cast<E>(i))) == text) return static_cast<E>(i);
+  return std::nullopt;
+}
+
+/// The names in order, for messages and help: "a, b or c" (`last` before the last name, ", "
+/// before the others), or with `between` and `last` both " | ": "a | b | c".
+template <class E, std::size_t count, class Name>
+std::string names_listed(Name name, std::string_view last = " or ", std::string_view between = ", ") {
+  std::string text;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i > 0) text += i + 1 == count ? last : between;
+    text += std::string_view(name(static_cast<E>(i)));
+  }
+  return text;
 }
 
 }  // namespace specula

@@ -214,7 +214,6 @@ double brdf_width(const FullBrdf& brdf) {
         if constexpr (std::is_same_v<B, Ward> || std::is_same_v<B, Ggx>) return b.alpha;
         else if constexpr (std::is_same_v<B, Lambert>) return kPi / 2;
         else if constexpr (std::is_same_v<B, FormulaBrdf>) return formula_brdf_width(b);
-        else if constexpr (std::is_same_v<B, Compensated>) return angular_width(*b.base);
         else return b.m;
       },
       brdf);
@@ -249,6 +248,7 @@ void require_incidence_deg(double degrees, const char* what) {
 }
 
 double angular_width(const Model& model) {
+  if (const Compensated* compensated = model.compensated()) return angular_width(*compensated->base);
   if (!model.is_lobe()) return brdf_width(model.brdf());
   const double u = std::visit([](const auto& l) { return l.half_max_log_cos(); }, model.lobe());
   return std::isfinite(u) ? std::acos(std::exp(-u)) : kPi / 2;
@@ -260,8 +260,7 @@ Albedo albedo(const Model& model, double theta_i) {
     throw InvalidArgument(fmt::format("incidence angle {} rad is outside [0, π/2)", theta_i));
   if (model.is_lobe() && model.form() == Form::rv)
     return std::visit([&](const auto& l) { return rv_albedo(l, model.coef(), theta_i); }, model.lobe());
-  if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf()))
-    return compensated_albedo(*compensated, theta_i);
+  if (const Compensated* compensated = model.compensated()) return compensated_albedo(*compensated, theta_i);
   HalfVectorShape shape{angular_width(model)};
   if (model.is_lobe()) {
     return std::visit(

@@ -93,7 +93,7 @@ CheckResult check(const Model& model, const CheckOptions& options) {
   }
   r.pairs = options.reciprocity_pairs;
   double tolerance = options.energy_tolerance;
-  if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf())) {
+  if (const Compensated* compensated = model.compensated()) {
     r.compensation_error = compensated->table->albedo_error;
     for (const double rho : grid.rho) r.max_deviation_from_one = std::max(r.max_deviation_from_one, std::abs(rho - 1));
     if (compensated->table->compensates()) tolerance += r.compensation_error;

@@ -17,7 +17,7 @@
 #include "specula/analysis/error.h"
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/simd/targets.h"
 
 namespace specula::cost {
@@ -30,7 +30,7 @@ using simd::Family;
 std::span<const families::Family* const> lobe_families() {
   return std::span(families::kFamilies).first(families::kLobeFamilyCount);
 }
-constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
+constexpr auto kPaths = enumerators<Path, kPathCount>();
 
 /// best = the smaller of best and value; NaN (nothing measured yet) gives value.
 void keep_fastest(double& best, double value) { best = std::isnan(best) ? value : std::min(best, value); }
@@ -96,7 +96,15 @@ void scalar_user_batch(const lobes::Lobe& lobe, std::span<const T> c, std::span<
   for (std::size_t i = 0; i < c.size(); ++i) out[i] = T(lobes::eval(lobe, double(c[i])));
 }
 
-simd::Tier tier_of(Path path) { return path == Path::exact ? simd::Tier::exact : simd::Tier::fast; }
+/// The SIMD tier of a SIMD path (the scalar path has none).
+simd::Tier tier_of(Path path) {
+  switch (path) {
+    case Path::exact: return simd::Tier::exact;
+    case Path::fast: return simd::Tier::fast;
+    case Path::scalar: break;
+  }
+  unreachable();
+}
 
 /// One row's evaluation of a whole array.
 template <class T>
@@ -340,10 +348,22 @@ std::vector<Measurement> measure_precision(const Settings& s, tbb::task_arena& a
 
 }  // namespace
 
-const char* to_string(Path path) noexcept {
-  constexpr const char* names[] = {"scalar", "exact", "fast"};
-  return names[static_cast<int>(path)];
+namespace {
+
+// The paths' names ("" outside the enum).
+constexpr const char* name_of(Path path) noexcept {
+  switch (path) {
+    case Path::scalar: return "scalar";
+    case Path::exact: return "exact";
+    case Path::fast: return "fast";
+  }
+  return "";
 }
+static_assert(names_complete<Path, kPathCount>(name_of));
+
+}  // namespace
+
+const char* to_string(Path path) noexcept { return name_of(path); }
 
 Settings Settings::quick() {
   Settings s;

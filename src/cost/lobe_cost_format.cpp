@@ -5,13 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include "specula/cost/lobe_cost.h"
+#include "specula/exceptions.h"
 
 namespace specula::cost {
 namespace {
 
 using simd::Family;
 
-constexpr Path kPaths[] = {Path::scalar, Path::exact, Path::fast};
+constexpr auto kPaths = enumerators<Path, kPathCount>();
 
 std::string cell(double v, const char* spec = "{:.3g}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "—";

@@ -91,7 +91,7 @@ std::string brdf_explorer(const Model& model) {
 
 /// What holds at the exported parameters only, where something does: a baked k, an energy table.
 std::string held_at_export(const Model& model) {
-  if (!model.is_lobe() && std::holds_alternative<Compensated>(model.brdf()))
+  if (model.compensated())
     return " (the energy table holds E at the exported parameters only)";
   if (glsl::coef_is_baked(model)) return " (k is baked in at the exported parameters)";
   return "";
@@ -121,23 +121,29 @@ std::string cpp_header(const Model& model) {
 
 }  // namespace
 
-Format parse_format(std::string_view text) {
-  if (text == "hlsl") return Format::hlsl;
-  if (text == "msl") return Format::msl;
-  if (text == "brdf") return Format::brdf;
-  if (text == "cpp") return Format::cpp;
-  throw InvalidArgument(fmt::format("unknown export format '{}' (expected hlsl, msl, brdf or cpp)", text));
-}
+namespace {
 
-const char* to_string(Format format) noexcept {
+// The formats' names, the one list parse_format and to_string read ("" outside the enum).
+constexpr const char* name_of(Format format) noexcept {
   switch (format) {
     case Format::hlsl: return "hlsl";
     case Format::msl: return "msl";
     case Format::brdf: return "brdf";
     case Format::cpp: return "cpp";
   }
-  return "hlsl";
+  return "";
 }
+static_assert(names_complete<Format, kFormatCount>(name_of));
+
+}  // namespace
+
+Format parse_format(std::string_view text) {
+  if (const auto format = enum_named<Format, kFormatCount>(text, name_of)) return *format;
+  throw InvalidArgument(fmt::format("unknown export format '{}' (expected {})", text,
+                                    names_listed<Format, kFormatCount>(name_of)));
+}
+
+const char* to_string(Format format) noexcept { return name_of(format); }
 
 std::string export_model(const Model& model, Format format) {
   switch (format) {
@@ -146,7 +152,7 @@ std::string export_model(const Model& model, Format format) {
     case Format::brdf: return brdf_explorer(model);
     case Format::cpp: return cpp_header(model);
   }
-  return "";
+  unreachable();
 }
 
 Slider slider_range(const ParamInfo& param, double value) {

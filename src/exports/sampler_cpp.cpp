@@ -284,10 +284,12 @@ std::string strategy(const Model& model, const sampling::Sampler& sampler) {
     case Method::log_t_space: return log_radial(first) + (model.form() == Form::rv ? kAboutReflection : kHalfVector);
     case Method::beckmann: return beckmann_radial(first) + kHalfVector;
     case Method::cosine: return "";
-    case Method::tabulated: break;
+    case Method::tabulated: {
+      const bool about_r = model.is_lobe() && model.form() == Form::rv;
+      return table_radial(sampler.table()) + (about_r ? kAboutReflection : kHalfVector);
+    }
   }
-  const bool about_r = model.is_lobe() && model.form() == Form::rv;
-  return table_radial(sampler.table()) + (about_r ? kAboutReflection : kHalfVector);
+  unreachable();
 }
 
 // The model's own density and draw: its strategy with the cosine share (a one-sample mixture).
@@ -363,7 +365,7 @@ std::string compensated_density(const Model& model, const Compensated& compensat
 }  // namespace
 
 std::string cpp_sampler(const Model& model) {
-  const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf());
+  const Compensated* compensated = model.compensated();
   return kCommon + (compensated ? compensated_density(model, *compensated) : model_density(model)) + kSampleAndPdf;
 }
 

@@ -1,7 +1,7 @@
 // specula::expr evaluation: a stack machine over the postfix nodes, one value per slot for
 // evaluate() and one chunk of rows per slot for evaluate_batch(). Both apply the same functions,
 // so they agree bit for bit: evaluate_batch runs the correctly rounded operations (+ − × ÷ √,
-// |·|, negation, min, max) on SIMD vectors (simd/columns.h) for chunks of 64 rows or more, and
+// |·|, negation, min, max) on SIMD vectors (columns.h) for chunks of 64 rows or more, and
 // the library functions (log, exp, pow, …) through libm value by value, as evaluate() does.
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 
 #include "specula/expr/expr.h"
 #include "specula/expr/program.h"
-#include "specula/simd/columns.h"
+#include "columns.h"
 
 namespace specula::expr {
 namespace {
@@ -71,17 +71,17 @@ double run(const Expression& e, std::span<const double> variables, double* stack
 }
 
 // The operations that are correctly rounded (bit-identical whatever the vector width).
-std::optional<simd::ColumnOp> column_op(Op op) {
+std::optional<ColumnOp> column_op(Op op) {
   switch (op) {
-    case Op::add: return simd::ColumnOp::add;
-    case Op::sub: return simd::ColumnOp::sub;
-    case Op::mul: return simd::ColumnOp::mul;
-    case Op::div: return simd::ColumnOp::div;
-    case Op::min: return simd::ColumnOp::min;
-    case Op::max: return simd::ColumnOp::max;
-    case Op::neg: return simd::ColumnOp::neg;
-    case Op::sqrt: return simd::ColumnOp::sqrt;
-    case Op::abs: return simd::ColumnOp::abs;
+    case Op::add: return ColumnOp::add;
+    case Op::sub: return ColumnOp::sub;
+    case Op::mul: return ColumnOp::mul;
+    case Op::div: return ColumnOp::div;
+    case Op::min: return ColumnOp::min;
+    case Op::max: return ColumnOp::max;
+    case Op::neg: return ColumnOp::neg;
+    case Op::sqrt: return ColumnOp::sqrt;
+    case Op::abs: return ColumnOp::abs;
     default: return std::nullopt;
   }
 }
@@ -99,7 +99,7 @@ void run_chunk(const Expression& e, std::span<const std::span<const double>> col
       top += kChunk;
     } else if (const auto simd_op = column_op(node.op); simd_op && n >= kSimdMinRows) {
       if (arity(node.op) == 2) top -= kChunk;
-      simd::apply_columns(*simd_op, top - kChunk, top, n);
+      apply_columns(*simd_op, top - kChunk, top, n);
     } else {
       with_function(
           node.op,

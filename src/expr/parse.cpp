@@ -34,8 +34,10 @@ std::string describe(const Token& token) {
   switch (token.kind) {
     case TokenKind::end: return "end of input";
     case TokenKind::number: return fmt::format("number '{}'", token.text);
-    default: return fmt::format("'{}'", token.text);
+    case TokenKind::identifier:
+    case TokenKind::symbol: return fmt::format("'{}'", token.text);
   }
+  unreachable();
 }
 
 [[noreturn]] void fail(std::size_t column, std::string_view message) {

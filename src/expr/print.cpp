@@ -90,8 +90,23 @@ std::optional<Fragment> common(const Node& node, Operands operands, const Expres
     case Op::sub: return infix(operands, "-", kSum);
     case Op::mul: return infix(operands, "*", kProduct);
     case Op::div: return infix(operands, "/", kProduct);
-    default: return std::nullopt;
+    case Op::constant:
+    case Op::pow:
+    case Op::min:
+    case Op::max:
+    case Op::log:
+    case Op::log2:
+    case Op::exp:
+    case Op::sqrt:
+    case Op::abs:
+    case Op::sin:
+    case Op::cos:
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: return std::nullopt;  // each dialect's own
   }
+  unreachable();
 }
 
 // A negation of a negation reads "- -x": "-(-x)" nests two levels deeper per sign than the "--x"
@@ -182,8 +197,19 @@ std::string_view latex_function(Op op) {
     case Op::expm1: return "\\operatorname{expm1}";
     case Op::log1p: return "\\operatorname{log1p}";
     case Op::min: return "\\min";
-    default: return "\\max";
+    case Op::max: return "\\max";
+    case Op::constant:
+    case Op::variable:
+    case Op::add:
+    case Op::sub:
+    case Op::mul:
+    case Op::div:
+    case Op::pow:
+    case Op::neg:
+    case Op::sqrt:
+    case Op::abs: break;  // latex_node writes these itself
   }
+  unreachable();
 }
 
 Fragment latex_node(const Node& node, Operands operands, const Expression& e) {
@@ -199,8 +225,19 @@ Fragment latex_node(const Node& node, Operands operands, const Expression& e) {
     case Op::pow: return latex_power(operands);
     case Op::sqrt: return {"\\sqrt{" + operands[0].text + "}", kAtom};
     case Op::abs: return {"\\left|" + operands[0].text + "\\right|", kAtom};
-    default: return latex_call(latex_function(node.op), operands);
+    case Op::min:
+    case Op::max:
+    case Op::log:
+    case Op::log2:
+    case Op::exp:
+    case Op::sin:
+    case Op::cos:
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: return latex_call(latex_function(node.op), operands);
   }
+  unreachable();
 }
 
 }  // namespace

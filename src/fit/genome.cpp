@@ -11,6 +11,33 @@ namespace specula::fit {
 using expr::Node;
 using expr::Op;
 
+std::string_view operator_symbol(Op op) {
+  switch (op) {
+    case Op::constant:
+    case Op::variable: return "";
+    case Op::add: return "+";
+    case Op::sub: return "-";
+    case Op::mul: return "*";
+    case Op::div: return "/";
+    case Op::pow: return "^";
+    case Op::neg: return "neg";
+    case Op::min:
+    case Op::max:
+    case Op::log:
+    case Op::log2:
+    case Op::exp:
+    case Op::sqrt:
+    case Op::abs:
+    case Op::sin:
+    case Op::cos:
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: return expr::function_name(op);
+  }
+  unreachable();
+}
+
 std::vector<std::size_t> subtree_starts(std::span<const Node> nodes) {
   std::vector<std::size_t> start(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -223,17 +250,7 @@ struct Canon {
 
 const Canon kConstant{Op::constant, {}, "c"};
 
-std::string op_symbol(Op op) {
-  switch (op) {
-    case Op::add: return "+";
-    case Op::sub: return "-";
-    case Op::mul: return "*";
-    case Op::div: return "/";
-    case Op::pow: return "^";
-    case Op::neg: return "neg";
-    default: return std::string(expr::function_name(op));
-  }
-}
+std::string op_symbol(Op op) { return std::string(operator_symbol(op)); }
 
 // + or × of operands: nested same-op operands flattened, constants merged into one, sorted.
 Canon associative(Op op, std::initializer_list<const Canon*> operands) {

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <random>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "specula/expr/expr.h"
@@ -13,6 +15,10 @@ namespace specula::fit {
 
 using Genome = std::vector<expr::Node>;
 using Rng = std::mt19937_64;
+
+/// The symbol of an operator ("+", "^", "neg") or a function's call name ("sqrt", "pow"); "" for
+/// a leaf. --ops, --size-weights and canonical keys spell operators so.
+std::string_view operator_symbol(expr::Op op);
 
 /// start[i] is the first index of the subtree whose root is node i.
 std::vector<std::size_t> subtree_starts(std::span<const expr::Node> nodes);

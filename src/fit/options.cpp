@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <numeric>
 
+#include "genome.h"
 #include "specula/fit/fit.h"
 #include "specula/io/values.h"
 
@@ -26,17 +27,56 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
   }
 }
 
-// The symbol of an operator ("+", "neg") or a function's call name ("sqrt").
-std::string_view operator_symbol(Op op) {
-  switch (op) {
-    case Op::add: return "+";
-    case Op::sub: return "-";
-    case Op::mul: return "*";
-    case Op::div: return "/";
-    case Op::pow: return "^";
-    case Op::neg: return "neg";
-    default: return expr::function_name(op);
+// The names of the option values: one switch per enum, every enumerator in it, "" outside the enum
+// (what names_complete checks). Parsing, messages and metric_name() & co. all read these.
+constexpr std::string_view name_of(Metric metric) noexcept {
+  switch (metric) {
+    case Metric::rms: return "rms";
+    case Metric::mae: return "mae";
+    case Metric::max_abs: return "max-abs";
+    case Metric::mean_relative: return "mean-relative";
+    case Metric::r2: return "r2";
   }
+  return "";
+}
+static_assert(names_complete<Metric, kMetricCount>([](Metric m) { return name_of(m); }));
+
+constexpr std::string_view name_of(Constants constants) noexcept {
+  switch (constants) {
+    case Constants::fitted: return "fitted";
+    case Constants::integer: return "integer";
+    case Constants::none: return "none";
+  }
+  return "";
+}
+static_assert(names_complete<Constants, kConstantsCount>([](Constants c) { return name_of(c); }));
+
+constexpr std::string_view name_of(Split split) noexcept {
+  switch (split) {
+    case Split::random: return "random";
+    case Split::last: return "last";
+  }
+  return "";
+}
+static_assert(names_complete<Split, kSplitCount>([](Split s) { return name_of(s); }));
+
+constexpr std::string_view name_of(Choice choice) noexcept {
+  switch (choice) {
+    case Choice::parsimonious: return "parsimonious";
+    case Choice::knee: return "knee";
+    case Choice::best: return "best";
+  }
+  return "";
+}
+static_assert(names_complete<Choice, kChoiceCount>([](Choice c) { return name_of(c); }));
+
+/// The value of E named `name`, or InvalidArgument "unknown WHAT 'name' (expected a, b or c)".
+template <class E, std::size_t count>
+E parse_named(std::string_view name, std::string_view what) {
+  const auto name_of_e = [](E e) { return name_of(e); };
+  if (const auto value = enum_named<E, count>(name, name_of_e)) return *value;
+  throw InvalidArgument(
+      fmt::format("unknown {} '{}' (expected {})", what, name, names_listed<E, count>(name_of_e)));
 }
 
 std::optional<Op> operator_named(std::string_view name) {
@@ -49,26 +89,21 @@ std::optional<Op> operator_named(std::string_view name) {
 
 }  // namespace
 
-Metric parse_metric(std::string_view name) {
-  if (name == "rms") return Metric::rms;
-  if (name == "mae") return Metric::mae;
-  if (name == "max-abs") return Metric::max_abs;
-  if (name == "mean-relative") return Metric::mean_relative;
-  if (name == "r2") return Metric::r2;
-  throw InvalidArgument(fmt::format(
-      "unknown metric '{}' (expected rms, mae, max-abs, mean-relative or r2)", name));
-}
+Metric parse_metric(std::string_view name) { return parse_named<Metric, kMetricCount>(name, "metric"); }
+std::string_view metric_name(Metric metric) { return name_of(metric); }
 
-std::string_view metric_name(Metric metric) {
-  switch (metric) {
-    case Metric::rms: return "rms";
-    case Metric::mae: return "mae";
-    case Metric::max_abs: return "max-abs";
-    case Metric::mean_relative: return "mean-relative";
-    case Metric::r2: return "r2";
-  }
-  return "";
+Constants parse_constants(std::string_view name) {
+  return parse_named<Constants, kConstantsCount>(name, "constants mode");
 }
+std::string_view constants_name(Constants constants) { return name_of(constants); }
+
+std::optional<Split> split_named(std::string_view name) {
+  return enum_named<Split, kSplitCount>(name, [](Split s) { return name_of(s); });
+}
+std::string_view split_name(Split split) { return name_of(split); }
+
+Choice parse_choice(std::string_view name) { return parse_named<Choice, kChoiceCount>(name, "choice"); }
+std::string_view choice_name(Choice choice) { return name_of(choice); }
 
 double to_loss(Metric metric, double error) { return metric == Metric::r2 ? 1 - error : error; }
 
@@ -95,15 +130,7 @@ double measure(Metric metric, std::span<const double> predicted, std::span<const
       return total > 0 ? 1 - sum / total : (sum == 0 ? 1.0 : -INFINITY);
     }
   }
-  return INFINITY;
-}
-
-Constants parse_constants(std::string_view name) {
-  if (name == "fitted") return Constants::fitted;
-  if (name == "integer") return Constants::integer;
-  if (name == "none") return Constants::none;
-  throw InvalidArgument(
-      fmt::format("unknown constants mode '{}' (expected fitted, integer or none)", name));
+  unreachable();
 }
 
 SizeWeights::SizeWeights() { weight_.fill(1); }
@@ -163,14 +190,6 @@ std::string operator_names() {
     if (op == Op::pow) names += " pow";
   }
   return names;
-}
-
-Choice parse_choice(std::string_view name) {
-  if (name == "parsimonious") return Choice::parsimonious;
-  if (name == "knee") return Choice::knee;
-  if (name == "best") return Choice::best;
-  throw InvalidArgument(
-      fmt::format("unknown choice '{}' (expected parsimonious, knee or best)", name));
 }
 
 namespace {

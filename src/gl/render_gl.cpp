@@ -14,8 +14,8 @@
 namespace specula::gl {
 namespace {
 
-// Uniforms draw_full_screen or the texture binding set, not set_uniforms.
-const std::set<std::string> kSetElsewhere{"u_pixel_offset", "u_triangles", "u_bvh"};
+// The samplers: bound with their textures, not by set_uniforms.
+const std::set<std::string> kSetElsewhere{render::scene_uniform::triangles.name, render::scene_uniform::bvh.name};
 
 // glUniform* by name, remembering every name set.
 class UniformWriter {
@@ -63,26 +63,10 @@ class UniformWriter {
   std::set<std::string> names_;
 };
 
+// Every uniform but the samplers, by the names of render::scene_uniform (u_pixel_offset as 0, 0:
+// draw_full_screen sets each tile's).
 void set_uniforms(UniformWriter& w, const render::SceneUniforms& u) {
-  w.set("u_resolution", u.resolution);
-  w.set("u_eye", u.eye);
-  w.set("u_forward", u.forward);
-  w.set("u_right", u.right);
-  w.set("u_up", u.up);
-  w.set("u_sphere_count", static_cast<int>(u.spheres.size()));
-  w.set("u_spheres", u.spheres);
-  w.set("u_light_count", static_cast<int>(u.lights.size()));
-  w.set("u_lights", u.lights);
-  w.set("u_light_irradiance", u.light_irradiance);
-  w.set("u_diffuse", u.diffuse);
-  w.set("u_specular", u.specular);
-  w.set("u_ambient", u.ambient);
-  w.set("u_background", u.background);
-  w.set("u_model_params", u.model_params);
-  w.set("u_triangle_count", u.triangle_count);
-  w.set("u_display", u.display);
-  w.set("u_exposure", u.exposure);
-  w.set("u_tone_map", u.tone_map);
+  u.visit([&](const render::SceneUniform& uniform, const auto& value) { w.set(uniform.name, value); });
 }
 
 // An RGBA32F texture read with texelFetch (nearest, no mipmaps: complete without any).
@@ -170,8 +154,8 @@ render::Image Renderer::render(const render::Scene& scene, const render::RenderS
   writer.check_all_set();
   const DataTexture triangles(mesh.width, mesh.triangle_rows, mesh.triangles);
   const DataTexture nodes(mesh.width, mesh.node_rows, mesh.nodes);
-  triangles.bind(program, "u_triangles", 0);
-  nodes.bind(program, "u_bvh", 1);
+  triangles.bind(program, render::scene_uniform::triangles.name, 0);
+  nodes.bind(program, render::scene_uniform::bvh.name, 1);
   return draw_full_screen(compiled_->program, settings.width, settings.height, tile_side_);
 }
 

@@ -22,7 +22,7 @@ struct Word {
       case Language::msl: return msl;
       case Language::cpp: return cpp;
     }
-    return glsl;
+    unreachable();
   }
 };
 

@@ -240,7 +240,7 @@ void add_compensated_entry(ShaderSource& src, const Target& target, const Model&
 void add_entry(ShaderSource& src, const Target& target, const Model& model) {
   if (model.is_lobe())
     add_lobe_entry(src, target, model);
-  else if (const auto* compensated = std::get_if<Compensated>(&model.brdf()))
+  else if (const Compensated* compensated = model.compensated())
     add_compensated_entry(src, target, model, *compensated);
   else if (const families::ModelDefinition* builtin = builtin_definition(model))
     src.add_file(builtin->glsl_file);
@@ -260,25 +260,36 @@ std::string entry_arguments(const Target& target, const Model& model) {
 
 }  // namespace
 
-Dialect parse_dialect(std::string_view text) {
-  if (text == "glsl330") return Dialect::glsl330;
-  if (text == "gles300") return Dialect::gles300;
-  if (text == "webgl2") return Dialect::webgl2;
-  throw InvalidArgument(fmt::format("unknown GLSL dialect '{}' (expected glsl330, gles300 or webgl2)", text));
-}
+namespace {
 
-const char* to_string(Dialect dialect) noexcept {
+// The dialects' names, the one list parse_dialect and to_string read ("" outside the enum).
+constexpr const char* name_of(Dialect dialect) noexcept {
   switch (dialect) {
     case Dialect::glsl330: return "glsl330";
     case Dialect::gles300: return "gles300";
     case Dialect::webgl2: return "webgl2";
   }
-  return "glsl330";
+  return "";
+}
+static_assert(names_complete<Dialect, kDialectCount>(name_of));
+
+}  // namespace
+
+Dialect parse_dialect(std::string_view text) {
+  if (const auto dialect = enum_named<Dialect, kDialectCount>(text, name_of)) return *dialect;
+  throw InvalidArgument(fmt::format("unknown GLSL dialect '{}' (expected {})", text,
+                                    names_listed<Dialect, kDialectCount>(name_of)));
 }
 
+const char* to_string(Dialect dialect) noexcept { return name_of(dialect); }
+
 std::string version_header(Dialect dialect) {
-  if (dialect == Dialect::glsl330) return "#version 330 core\n";
-  return "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+  switch (dialect) {
+    case Dialect::glsl330: return "#version 330 core\n";
+    case Dialect::gles300:
+    case Dialect::webgl2: return "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+  }
+  unreachable();
 }
 
 namespace {

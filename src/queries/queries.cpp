@@ -10,6 +10,7 @@
 #include "specula/analysis/monte_carlo.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"

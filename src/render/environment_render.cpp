@@ -2,7 +2,6 @@
 // the environment, one sample of each per pair, weighted by the power heuristic (Veach 1997 §9.2).
 #include <algorithm>
 #include <fmt/format.h>
-#include <numbers>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -47,7 +46,7 @@ class EnvironmentShader {
       const double u3 = random.uniform(), u4 = random.uniform();
       sum = sum + environment_sample(*hit, v, local, v_local, u3, u4);
     }
-    return material_.ambient * material_.diffuse + sum * (1.0 / samples);
+    return material_.ambient_radiance() + sum * (1.0 / samples);
   }
 
  private:
@@ -55,8 +54,7 @@ class EnvironmentShader {
   Rgb integrand(const detail::SurfaceHit& hit, const Vec3& l, const Vec3& v, const Rgb& incoming) const noexcept {
     const double cos_l = dot(hit.normal, l);
     if (!(cos_l > 0) || (shadows_ && geometry_.blocked(hit, l, detail::kInfinity))) return {};
-    const Rgb brdf = material_.specular * material_.model(hit.normal, l, v) + material_.diffuse * (1 / std::numbers::pi);
-    return incoming * brdf * cos_l;
+    return incoming * material_.brdf(material_.model(hit.normal, l, v)) * cos_l;
   }
 
   /// ω from the model's sampler with V as its ω_i: density sampler.pdf(V, ω).

@@ -35,12 +35,6 @@ void Image::set(int x, int y, const Rgb& value) noexcept {
   p[2] = static_cast<float>(value.b);
 }
 
-ToneMap parse_tone_map(std::string_view text) {
-  if (text == "none") return ToneMap::none;
-  if (text == "aces") return ToneMap::aces;
-  throw InvalidArgument(fmt::format("unknown tone map '{}': expected none or aces", text));
-}
-
 const char* to_string(ToneMap tone_map) noexcept {
   return tone_map == ToneMap::aces ? "aces" : "none";
 }

@@ -261,12 +261,6 @@ ImageFile decode_exr(const std::filesystem::path& path) {
 
 }  // namespace
 
-ExrPixel parse_exr_pixel(std::string_view text) {
-  if (text == "half") return ExrPixel::half;
-  if (text == "float") return ExrPixel::float32;
-  throw InvalidArgument(fmt::format("unknown EXR pixel type '{}': expected half or float", text));
-}
-
 void write_png(const std::filesystem::path& path, const Image& image, const Display& display,
                const Metadata& metadata) {
   io::write_file_atomically(path, encode_png(to_srgb8(image, display), image.width(), image.height(), metadata));

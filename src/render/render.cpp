@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <span>
 #include <tbb/blocked_range.h>
@@ -52,15 +51,15 @@ struct PreparedLight {
 // docs/math.md §5, the paper's local illumination: the shading equation, written once for both
 // render paths (and once in GLSL, src/glsl/shaders/scene/shading.glsl's scene_surface_radiance):
 //   L_o = ambient·ρ_d + Σ over the lights that reach the point of (ρ_d/π + ρ_s f(N, L, V)) · E · N·L,
-// summed light by light in scene order. radiance[j] becomes L_o of surface point j;
-// lit(light, add) calls add(j, f, E, N·L) for each point j that `light` reaches.
+// summed light by light in scene order, the material's terms as Material::ambient_radiance and
+// Material::brdf compute them (render_environment's as well). radiance[j] becomes L_o of surface
+// point j; lit(light, add) calls add(j, f, E, N·L) for each point j that `light` reaches.
 template <class Lit>
 void shade(const Material& m, std::span<const PreparedLight> lights, std::span<Rgb> radiance, Lit&& lit) {
-  const Rgb diffuse_brdf = m.diffuse * (1 / std::numbers::pi);
-  std::fill(radiance.begin(), radiance.end(), m.ambient * m.diffuse);
+  std::fill(radiance.begin(), radiance.end(), m.ambient_radiance());
   for (const PreparedLight& light : lights)
     lit(light, [&](std::size_t j, double f, const Rgb& irradiance, double cos_i) {
-      radiance[j] = radiance[j] + (diffuse_brdf + m.specular * f) * irradiance * cos_i;
+      radiance[j] = radiance[j] + m.brdf(f) * irradiance * cos_i;
     });
 }
 

@@ -15,7 +15,6 @@
 #include "specula/exceptions.h"
 #include "specula/io/files.h"
 #include "specula/io/table.h"
-#include "specula/io/values.h"
 
 namespace specula::render {
 namespace {
@@ -86,37 +85,6 @@ Triangle obj_triangle(const std::filesystem::path& path, const tinyobj::attrib_t
   return t;
 }
 
-std::vector<double> light_numbers(std::string_view spec, std::string_view part, std::size_t count,
-                                  std::string_view what) {
-  std::vector<double> numbers;
-  for (std::size_t start = 0; start <= part.size();) {
-    const std::size_t comma = std::min(part.find(',', start), part.size());
-    numbers.push_back(io::parse_number(part.substr(start, comma - start), fmt::format("the {} of light '{}'", what, spec)));
-    start = comma + 1;
-  }
-  if (numbers.size() != count)
-    throw InvalidArgument(fmt::format("light '{}': the {} needs {} numbers, got {}", spec, what, count, numbers.size()));
-  return numbers;
-}
-
-std::vector<std::string_view> split_colons(std::string_view spec) {
-  std::vector<std::string_view> parts;
-  for (std::size_t start = 0; start <= spec.size();) {
-    const std::size_t colon = std::min(spec.find(':', start), spec.size());
-    parts.push_back(spec.substr(start, colon - start));
-    start = colon + 1;
-  }
-  return parts;
-}
-
-void check_light(const Light& light, std::string_view name) {
-  const Vec3& v = light.kind == LightKind::directional ? light.direction : light.position;
-  if (!finite(v) || (light.kind == LightKind::directional && !(length(v) > 0)))
-    throw InvalidArgument(fmt::format("{}: the direction must be finite and non-zero", name));
-  if (!valid_colour(light.colour) || !(light.intensity >= 0) || !std::isfinite(light.intensity))
-    throw InvalidArgument(fmt::format("{}: colour and intensity must be finite and ≥ 0", name));
-}
-
 void check_camera(const Camera& camera) {
   const Vec3 forward = camera.look_at - camera.position;
   if (!finite(camera.position) || !finite(camera.look_at) || !finite(camera.up) || !(length(forward) > 0))
@@ -164,22 +132,12 @@ Camera framing(const std::vector<Triangle>& triangles, double vertical_fov_deg) 
   return framing((lo + hi) * 0.5, radius > 0 ? radius : 1, vertical_fov_deg);
 }
 
-Light parse_light(std::string_view spec) {
-  const auto parts = split_colons(spec);
-  if ((parts[0] != "dir" && parts[0] != "point") || parts.size() < 2 || parts.size() > 4)
-    throw InvalidArgument(fmt::format(
-        "malformed light '{}': expected dir:x,y,z[:r,g,b[:intensity]] or point:x,y,z[:r,g,b[:intensity]]", spec));
-  Light light;
-  light.kind = parts[0] == "dir" ? LightKind::directional : LightKind::point;
-  const auto xyz = light_numbers(spec, parts[1], 3, light.kind == LightKind::directional ? "direction" : "position");
-  (light.kind == LightKind::directional ? light.direction : light.position) = {xyz[0], xyz[1], xyz[2]};
-  if (parts.size() > 2) {
-    const auto rgb = light_numbers(spec, parts[2], 3, "colour");
-    light.colour = {rgb[0], rgb[1], rgb[2]};
-  }
-  if (parts.size() > 3) light.intensity = light_numbers(spec, parts[3], 1, "intensity")[0];
-  check_light(light, fmt::format("light '{}'", spec));
-  return light;
+void check_light(const Light& light, std::string_view what) {
+  const Vec3& v = light.kind == LightKind::directional ? light.direction : light.position;
+  if (!finite(v) || (light.kind == LightKind::directional && !(length(v) > 0)))
+    throw InvalidArgument(fmt::format("{}: the direction must be finite and non-zero", what));
+  if (!valid_colour(light.colour) || !(light.intensity >= 0) || !std::isfinite(light.intensity))
+    throw InvalidArgument(fmt::format("{}: colour and intensity must be finite and ≥ 0", what));
 }
 
 std::string to_string(const Light& light) {
@@ -197,6 +155,21 @@ Scene default_scene(const Model& model) {
           .lights = {Light{}},
           .material = Material(model),
           .background = {}};
+}
+
+Scene make_scene(const Model& model, SceneDescription description) {
+  Scene scene = default_scene(model);
+  if (!description.mesh.empty()) {
+    scene.spheres.clear();
+    scene.triangles = std::move(description.mesh);
+    scene.camera = framing(scene.triangles);
+  }
+  if (description.lights) scene.lights = std::move(*description.lights);
+  Material& m = scene.material;
+  m.diffuse = description.diffuse.value_or(m.diffuse);
+  m.specular = description.specular.value_or(m.specular);
+  m.ambient = description.ambient.value_or(m.ambient);
+  return scene;
 }
 
 void validate(const Scene& scene) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
 
 #include "specula/brdf/directions.h"
 #include "specula/exceptions.h"
@@ -25,6 +26,18 @@ std::string numbers(const std::array<float, N>& values) {
   return numbers(values.data(), N);
 }
 
+// The default scene's value of a uniform, as its documentation shows it: an array's first element.
+std::string shown(int value) { return fmt::format("{}", value); }
+std::string shown(float value) { return numbers(&value, 1); }
+template <std::size_t N>
+std::string shown(const std::array<float, N>& values) {
+  return numbers(values);
+}
+template <std::size_t N>
+std::string shown(const std::vector<std::array<float, N>>& values) {
+  return values.empty() ? "" : numbers(values.front());
+}
+
 std::string uniform_documentation(const Model& model) {
   const RenderSettings size{512, 512};
   const SceneUniforms d = scene_uniforms(default_scene(model), size);
@@ -34,30 +47,24 @@ std::string uniform_documentation(const Model& model) {
       "// specula's render::scene_uniforms and render::mesh_textures compute them from a scene.\n"
       "// The default scene's values at 512x512 are in brackets: a unit sphere lit from the upper left front.\n",
       expr::comment_text(model.id()));
-  const std::vector<std::pair<std::string, std::string>> rows{
-      {"vec2 u_resolution", fmt::format("whole image, pixels [{}]", numbers(d.resolution))},
-      {"vec2 u_pixel_offset", "this tile's lower-left pixel in the image, from the bottom left [0, 0]"},
-      {"vec3 u_eye", fmt::format("camera position [{}]", numbers(d.eye))},
-      {"vec3 u_forward", fmt::format("unit view direction [{}]", numbers(d.forward))},
-      {"vec3 u_right", fmt::format("unit right * tan(fov/2) * width/height [{}]", numbers(d.right))},
-      {"vec3 u_up", fmt::format("unit up * tan(fov/2) [{}]", numbers(d.up))},
-      {"int u_sphere_count", fmt::format("spheres used, <= {} [{}]", kShaderMaxSpheres, d.spheres.size())},
-      {"vec4 u_spheres[]", fmt::format("centre, radius [{}]", numbers(d.spheres[0]))},
-      {"int u_light_count", fmt::format("lights used, <= {} [{}]", kShaderMaxLights, d.lights.size())},
-      {"vec4 u_lights[]", fmt::format("w 0: unit direction toward the light; w 1: position [{}]", numbers(d.lights[0]))},
-      {"vec3 u_light_irradiance[]", fmt::format("colour * intensity, E; points: / d^2 [{}]", numbers(d.light_irradiance[0]))},
-      {"vec3 u_diffuse", fmt::format("rho_d, Lambert albedo [{}]", numbers(d.diffuse))},
-      {"vec3 u_specular", fmt::format("rho_s, scales specula_brdf [{}]", numbers(d.specular))},
-      {"vec3 u_ambient", fmt::format("ambient radiance, reflected as ambient * rho_d [{}]", numbers(d.ambient))},
-      {"vec3 u_background", fmt::format("radiance where a ray hits nothing [{}]", numbers(d.background))},
-      {"vec4 u_model_params", fmt::format("specula_brdf's params [{}]", numbers(d.model_params))},
-      {"int u_triangle_count", "triangles in u_triangles, 0 = no mesh [0]"},
-      {"sampler2D u_triangles", "RGBA32F, 6 texels a triangle: v0 (w: has normals), e1, e2, n0, n1, n2"},
-      {"sampler2D u_bvh", "RGBA32F, 2 texels a node: (min, first), (max, count); count 0: inner"},
-      {"int u_display", "0: linear radiance out; 1: exposure, tone map, sRGB [1 for a viewer]"},
-      {"float u_exposure", "stops, with u_display 1 [0]"},
-      {"int u_tone_map", "0 none (clamp), 1 ACES (Narkowicz), with u_display 1 [0]"}};
-  for (const auto& [name, meaning] : rows) text += fmt::format("//   {:<26} {}\n", name, meaning);
+  std::map<std::string_view, std::string> values;
+  d.visit([&](const SceneUniform& u, const auto& value) { values[u.name] = shown(value); });
+  for (const SceneUniform& u : scene_uniform::all) {
+    const std::string declared = fmt::format("{} {}{}", u.type, u.name, u.length.empty() ? "" : "[]");
+    const std::string meaning =
+        fmt::format(fmt::runtime(u.meaning), fmt::arg("value", values[u.name]),
+                    fmt::arg("max_spheres", kShaderMaxSpheres), fmt::arg("max_lights", kShaderMaxLights));
+    text += fmt::format("//   {:<26} {}\n", declared, meaning);
+  }
+  return text;
+}
+
+// The lines `uniform TYPE NAME[LENGTH];` of scene_uniform::all, samplers highp.
+std::string uniform_declarations() {
+  std::string text;
+  for (const SceneUniform& u : scene_uniform::all)
+    text += fmt::format("{}uniform {}{} {}{};", text.empty() ? "" : "\n", u.type == "sampler2D" ? "highp " : "",
+                        u.type, u.name, u.length.empty() ? "" : fmt::format("[{}]", u.length));
   return text;
 }
 
@@ -132,7 +139,8 @@ std::string scene_fragment_shader(const Model& model, glsl::Dialect dialect, Sce
   glsl::ShaderSource src({{"mesh", geometry == SceneGeometry::spheres ? "0" : "1"},
                           {"max_spheres", std::to_string(kShaderMaxSpheres)},
                           {"max_lights", std::to_string(kShaderMaxLights)},
-                          {"bvh_stack", std::to_string(kShaderBvhStackSize)}});
+                          {"bvh_stack", std::to_string(kShaderBvhStackSize)},
+                          {"uniforms", uniform_declarations()}});
   src.add_file("scene/uniforms.glsl");
   src.add("model", glsl::model_glsl(model));
   src.add_file("scene/main.glsl");

@@ -17,7 +17,7 @@
 #include "specula/cost/lobe_cost.h"
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/report/plot.h"
 
 namespace specula::report {

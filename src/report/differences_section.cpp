@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "sections.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace specula::report {
 namespace {

@@ -11,6 +11,7 @@
 #include "specula/analysis/check.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/report/plot.h"
 

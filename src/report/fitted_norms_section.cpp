@@ -11,7 +11,7 @@
 #include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 #include "specula/fit/fit.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/normalize/normalize.h"
 #include "specula/report/plot.h"
 

@@ -7,7 +7,7 @@
 #include "sections.h"
 #include "specula/analysis/error.h"
 #include "specula/lobes/lobes.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/report/plot.h"
 
 namespace specula::report {

@@ -7,8 +7,8 @@
 #include "specula/expr/expr.h"
 #include "specula/fit/fit.h"
 #include "specula/io/values.h"
-#include "specula/models/model.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/catalogue/catalogue.h"
+#include "specula/lobes/closed_form.h"
 #include "specula/normalize/normalize.h"
 #include "specula/report/plot.h"
 
@@ -39,7 +39,7 @@ std::string fig5(Context& context) {
   DataTable table{"fig5-normalization", {"n", "coef_exact", "coef_exact_3dp", "coef_paper_fit", "delta_paper_fit"}, {}};
   std::vector<std::vector<std::string>> rows;
   for (const double n : io::paper50()) {
-    const double exact = normalize::log_rv(n);
+    const double exact = lobes::log_rv(n);
     const double fit = make_model("log-paper", {{"n", n}}).coef();
     table.rows.push_back({n, exact, round3(exact), fit, fit / exact - 1});
     rows.push_back({fmt::format("{:g}", n), fmt::format("{:.3f}", exact), fmt::format("{:.15g}", exact),
@@ -48,7 +48,7 @@ std::string fig5(Context& context) {
   int matched = 0;
   std::vector<std::vector<std::string>> paper_rows;
   for (int i = 0; i < 7; ++i) {
-    const double exact = normalize::log_rv(i + 1);
+    const double exact = lobes::log_rv(i + 1);
     const bool same = round3(exact) == kPaperFig5[i];
     matched += same;
     paper_rows.push_back({std::to_string(i + 1), fmt::format("{:.3f}", kPaperFig5[i]), fmt::format("{:.3f}", exact),
@@ -158,7 +158,7 @@ std::string fig8(Context& context, const Fits& fits) {
 /// Δ(n) = k(n)/coef(n) − 1 of a formula in n.
 std::vector<double> deltas(const std::vector<double>& ns, const std::function<double(double)>& k) {
   std::vector<double> out;
-  for (const double n : ns) out.push_back(k(n) / normalize::log_rv(n) - 1);
+  for (const double n : ns) out.push_back(k(n) / lobes::log_rv(n) - 1);
   return out;
 }
 
@@ -185,7 +185,7 @@ std::string fig9(Context& context, const Fits& fits) {
        Stroke::solid, deltas(ns, formula(best.formula))},
       {"closed form, checked by quadrature", "delta_closed_form", "#000000", Stroke::dotted,
        deltas(ns, [](double n) {
-         return normalize::log_rv(n) * normalize::log_rv(n) /
+         return lobes::log_rv(n) * lobes::log_rv(n) /
                 normalize::coefficient(lobes::Log<>{n}, Form::rv, normalize::Method::quadrature);
        })}};
   DataTable table{"fig9-delta", {"n"}, {}};
@@ -231,7 +231,7 @@ Section normalization_section(Context& context) {
   context.progress("Figs. 7-8: symbolic regression of the table");
   std::vector<double> rounded, exact;
   for (const double n : io::paper50()) {
-    exact.push_back(normalize::log_rv(n));
+    exact.push_back(lobes::log_rv(n));
     rounded.push_back(round3(exact.back()));
   }
   const Fits fits{run_fit(context, rounded, true), run_fit(context, exact, false)};

@@ -37,8 +37,10 @@ std::string dash_attribute(Stroke stroke) {
   switch (stroke) {
     case Stroke::dashed: return " stroke-dasharray=\"7 4\"";
     case Stroke::dotted: return " stroke-dasharray=\"2 3\"";
-    default: return "";
+    case Stroke::solid:
+    case Stroke::none: return "";
   }
+  unreachable();
 }
 
 // One axis mapped onto pixels, with its ticks.

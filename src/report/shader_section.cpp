@@ -3,9 +3,10 @@
 #include <fmt/format.h>
 
 #include "sections.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/glsl/glsl.h"
 #include "specula/io/files.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 #include "specula/normalize/log_coef_float.h"
 #include "specula/render/image_io.h"
 #include "specula/render/panel.h"
@@ -19,7 +20,7 @@ double shader_coef_error() {
   double worst = 0;
   for (const double n : log_spaced(1e-3, 1e6, 4001)) {
     const auto nf = static_cast<float>(n);
-    worst = std::max(worst, std::abs(normalize::log_rv_approx<float>(nf) / normalize::log_rv(nf) - 1));
+    worst = std::max(worst, std::abs(normalize::log_rv_approx<float>(nf) / lobes::log_rv(nf) - 1));
   }
   return worst;
 }
@@ -72,7 +73,7 @@ std::string fig11(Context& context) {
                                   "sphere, linear radiance, sRGB). The normalized lobe (left) reflects coef({1:g}) = "
                                   "{2:.4g} times more energy in its highlight than the bare F<sub>log</sub> (middle); "
                                   "Schlick's lobe (right) spreads it in a long tail.",
-                                  size, n, normalize::log_rv(n)),
+                                  size, n, lobes::log_rv(n)),
                       "specula compare --models log-normalized,log,schlick -p n=50 --out fig11.png");
 }
 

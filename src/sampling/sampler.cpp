@@ -115,7 +115,7 @@ struct Sampler::Impl {
   std::shared_ptr<const EnergyTable> table;
 
   explicit Impl(const Model& m) : model(m) {
-    if (const auto* compensated = model.is_lobe() ? nullptr : std::get_if<Compensated>(&model.brdf())) {
+    if (const Compensated* compensated = model.compensated()) {
       base = std::make_unique<Sampler>(*compensated->base);
       table = compensated->table;
       method = base->method();
@@ -135,7 +135,9 @@ struct Sampler::Impl {
       case Method::beckmann: axis = Axis::half_vector, radial = BeckmannRadial(p[0]); break;
       case Method::ggx_visible_normals: alpha = p[0]; break;
       case Method::cosine: share = 1; break;
-      default: axis = Axis::half_vector, use_table(brdf_table(model), kBrdfTableCosineShare);
+      case Method::tabulated:
+      case Method::power_cosine:  // lobe methods: a full BRDF stating one is tabulated
+      case Method::log_t_space: axis = Axis::half_vector, use_table(brdf_table(model), kBrdfTableCosineShare); break;
     }
   }
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "specula/exceptions.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 
 namespace specula::serve {
 namespace {

@@ -104,15 +104,17 @@ std::string error_endpoint(std::string_view body, const Limits& limits) {
 namespace {
 
 /// The default comparison scene (render/scene.h: a unit sphere, one directional light) with the
-/// light toward `light` if given, at `size` pixels, in display values (sRGB, no tone map).
+/// light toward `light` if given, at `size` pixels, in display values (sRGB, no tone map): its
+/// uniforms by name (render::SceneUniforms::visit, the names the shader declares).
 nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits& limits) {
-  render::Scene scene = render::default_scene(m);
+  render::SceneDescription description;
   if (f.has("light")) {
     const auto light = f.values("light", 3);
     if (light.size() != 3 || (light[0] == 0 && light[1] == 0 && light[2] == 0))
       fail("light", "light must be a non-zero direction [x, y, z] toward the light");
-    scene.lights[0].direction = {light[0], light[1], light[2]};
+    description.lights = {render::Light{.direction = {light[0], light[1], light[2]}}};
   }
+  const render::Scene scene = render::make_scene(m, std::move(description));
   const auto size = f.values_or("size", "256,256", 2);
   if (size.size() != 2 || size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]) ||
       size[0] < 1 || size[1] < 1 || size[0] > static_cast<double>(limits.max_image_side) ||
@@ -120,14 +122,9 @@ nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits&
     fail("size", fmt::format("size must be [width, height], whole numbers in [1, {}]", limits.max_image_side));
   const render::SceneUniforms u = render::scene_uniforms(
       scene, {static_cast<int>(size[0]), static_cast<int>(size[1])}, render::Display{});
-  return {{"u_resolution", u.resolution}, {"u_pixel_offset", std::array<float, 2>{0, 0}},
-          {"u_eye", u.eye}, {"u_forward", u.forward}, {"u_right", u.right}, {"u_up", u.up},
-          {"u_sphere_count", u.spheres.size()}, {"u_spheres", u.spheres},
-          {"u_light_count", u.lights.size()}, {"u_lights", u.lights}, {"u_light_irradiance", u.light_irradiance},
-          {"u_diffuse", u.diffuse}, {"u_specular", u.specular}, {"u_ambient", u.ambient},
-          {"u_background", u.background}, {"u_model_params", u.model_params},
-          {"u_triangle_count", u.triangle_count}, {"u_display", u.display}, {"u_exposure", u.exposure},
-          {"u_tone_map", u.tone_map}};
+  nlohmann::ordered_json uniforms = nlohmann::ordered_json::object();
+  u.visit([&](const render::SceneUniform& uniform, const auto& value) { uniforms[uniform.name] = value; });
+  return uniforms;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 
+#include "specula/exceptions.h"
 #include "specula/simd/formula.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -72,8 +73,18 @@ Operand<hn::TFromD<D>> Unary(D d, Op op, const Operand<hn::TFromD<D>>& a, hn::TF
     case Op::sin: return map([d](V<D> x) { return SinOp(d, x); });
     case Op::cos: return map([d](V<D> x) { return CosOp(d, x); });
     case Op::acos: return map([d](V<D> x) { return AcosOp(d, x); });
-    default: return map([d](V<D> x) { return AsinOp(d, x); });  // Op::asin, the last unary op
+    case Op::asin: return map([d](V<D> x) { return AsinOp(d, x); });
+    case Op::constant:
+    case Op::variable:
+    case Op::add:
+    case Op::sub:
+    case Op::mul:
+    case Op::div:
+    case Op::pow:
+    case Op::min:
+    case Op::max: break;  // not unary: RunStep sends them elsewhere
   }
+  unreachable();
 }
 
 /// pow with a uniform integral exponent small enough for the multiplication chain, or PowOp.
@@ -100,8 +111,23 @@ Operand<hn::TFromD<D>> Binary(D d, Op op, const Operand<hn::TFromD<D>>& a, const
     case Op::div: return map([](V<D> x, V<D> y) { return hn::Div(x, y); });
     case Op::min: return map([](V<D> x, V<D> y) { return MinOp<D>(x, y); });
     case Op::max: return map([](V<D> x, V<D> y) { return MaxOp<D>(x, y); });
-    default: return Power(d, a, b, out, rows);  // Op::pow, the last binary op
+    case Op::pow: return Power(d, a, b, out, rows);
+    case Op::constant:
+    case Op::variable:
+    case Op::neg:
+    case Op::log:
+    case Op::log2:
+    case Op::exp:
+    case Op::sqrt:
+    case Op::abs:
+    case Op::sin:
+    case Op::cos:
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: break;  // not binary: RunStep sends them elsewhere
   }
+  unreachable();
 }
 
 /// One step over the chunk: the stack's level k writes column stack + k·kFormulaRows.

@@ -25,7 +25,7 @@ namespace specula::simd::HWY_NAMESPACE {
 enum class Lanes { native, promoted };
 
 /// The kernel of a family that has none of its own: NaN, and no operations counted
-/// (families::has_kernel tells it apart by that).
+/// (has_kernel tells it apart by that).
 template <class D>
 struct NoKernel {
   static constexpr int kOps = 0;

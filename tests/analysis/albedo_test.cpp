@@ -10,6 +10,7 @@
 #include "specula/analysis/albedo.h"
 #include "specula/analysis/monte_carlo.h"
 #include "specula/brdf/microfacet.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/io/values.h"
 

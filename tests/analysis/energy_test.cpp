@@ -12,6 +12,7 @@
 #include "reference_table.h"
 #include "specula/analysis/energy.h"
 #include "specula/analysis/monte_carlo.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/glsl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/sampling/check.h"
@@ -89,22 +90,35 @@ TEST(Compensated, IdsResolveAndTheirTablesAreCachedPerParameterValues) {
   EXPECT_EQ(find_model("+ms"), nullptr);
   const Model a = make_model("ggx+ms", {{"alpha", 0.4}}), b = make_model("ggx+ms", {{"alpha", 0.4}});
   const Model c = make_model("ggx+ms", {{"alpha", 0.5}});
-  EXPECT_EQ(std::get<Compensated>(a.brdf()).table, std::get<Compensated>(b.brdf()).table);
-  EXPECT_NE(std::get<Compensated>(a.brdf()).table, std::get<Compensated>(c.brdf()).table);
+  EXPECT_EQ(a.compensated()->table, b.compensated()->table);
+  EXPECT_NE(a.compensated()->table, c.compensated()->table);
   EXPECT_THROW(make_model("ggx+ms", {{"alpha", 2}}), InvalidArgument);
+}
+
+// M+ms is reached through one accessor, Model::compensated(): its base and table, nullptr for any
+// other model; a compensated lobe model is no lobe (its f is in the dot products).
+TEST(Compensated, OneAccessorHoldsTheBaseAndTheTable) {
+  for (const char* id : {"ggx", "log-normalized", "lambert"}) EXPECT_EQ(make_model(id).compensated(), nullptr) << id;
+  const Model m = make_model("log-normalized+ms", {{"n", 30}});
+  ASSERT_NE(m.compensated(), nullptr);
+  EXPECT_FALSE(m.is_lobe());
+  EXPECT_EQ(m.compensated()->base->id(), "log-normalized");
+  EXPECT_EQ(m.compensated()->base->param("n"), 30);
+  const Vec3 n{0, 0, 1}, l{0.6, 0, 0.8}, v{-0.48, 0.36, 0.8};
+  EXPECT_EQ(m(n, l, v), (*m.compensated()->base)(n, l, v) + m.compensated()->table->multiple_scattering(0.8, 0.8));
 }
 
 TEST(Compensated, GgxAlbedoIsOneWithinTheStatedErrorAtEveryAngle) {
   for (const double alpha : {0.05, 0.2, 0.5, 1.0}) {
     const Model m = make_model("ggx+ms", {{"alpha", alpha}});
-    const EnergyTable& table = *std::get<Compensated>(m.brdf()).table;
+    const EnergyTable& table = *m.compensated()->table;
     ASSERT_TRUE(table.compensates());
     EXPECT_LT(table.albedo_error, 1e-3) << alpha;
     EXPECT_LT(table.interpolation_error, 1e-3) << alpha;
     for (double deg = 0; deg < 89.95; deg += 2.3)
       EXPECT_NEAR(analysis::albedo(m, deg * kDegree).value, 1, table.albedo_error) << alpha << " " << deg;
     // Negative control: GGX alone loses more than the stated error at the same angle.
-    EXPECT_GT(1 - analysis::albedo(*std::get<Compensated>(m.brdf()).base, 60 * kDegree).value, table.albedo_error);
+    EXPECT_GT(1 - analysis::albedo(*m.compensated()->base, 60 * kDegree).value, table.albedo_error);
   }
 }
 
@@ -113,13 +127,13 @@ TEST(Compensated, GgxAlbedoIsOneWithinTheStatedErrorAtEveryAngle) {
 TEST(Compensated, CookTorranceAlbedoIsOneWithinTheStatedErrorAtEveryAngle) {
   for (const double m : {0.1, 0.3, 0.6}) {
     const Model model = make_model("cook-torrance+ms", {{"m", m}});
-    const EnergyTable& table = *std::get<Compensated>(model.brdf()).table;
+    const EnergyTable& table = *model.compensated()->table;
     ASSERT_TRUE(table.compensates()) << m;
     EXPECT_LT(table.albedo_error, 1e-3) << m;
     for (double deg = 0; deg < 89.95; deg += 4.1)
       EXPECT_NEAR(analysis::albedo(model, deg * kDegree).value, 1, table.albedo_error) << m << " " << deg;
     // Negative control: Cook-Torrance alone loses more than the stated error at grazing.
-    const Model& base = *std::get<Compensated>(model.brdf()).base;
+    const Model& base = *model.compensated()->base;
     EXPECT_GT(1 - analysis::albedo(base, 80 * kDegree).value, table.albedo_error) << m;
   }
 }
@@ -149,12 +163,12 @@ TEST(EnergyTable, EveryModelsTableCostsAtMostThreeMillionEvaluations) {
 TEST(Compensated, MonteCarloOverTheFullBrdfAgreesThatTheAlbedoIsOne) {
   // An independent second method: the importance-sampled estimator evaluates f = f_M + f_ms itself.
   const Model m = make_model("ggx+ms", {{"alpha", 0.6}});
-  const double stated = std::get<Compensated>(m.brdf()).table->albedo_error;
+  const double stated = m.compensated()->table->albedo_error;
   for (const double deg : {0.0, 45.0, 75.0}) {
     const auto e = analysis::albedo_monte_carlo(m, deg * kDegree, 400'000, 7);
     EXPECT_NEAR(e.mean, 1, 4 * e.standard_error + stated) << deg;
     // Negative control: the base model's estimate is far from 1.
-    const auto base = analysis::albedo_monte_carlo(*std::get<Compensated>(m.brdf()).base, deg * kDegree, 400'000, 7);
+    const auto base = analysis::albedo_monte_carlo(*m.compensated()->base, deg * kDegree, 400'000, 7);
     EXPECT_GT(std::abs(base.mean - 1), 4 * base.standard_error + stated) << deg;
   }
 }
@@ -184,7 +198,7 @@ TEST(Compensated, IsReciprocal) {
     EXPECT_LT(max_asymmetry([&](const Vec3& l, const Vec3& v) { return m(n, l, v); }), 1e-12) << id;
   }
   // Negative control: the same table with the outgoing factor squared is not reciprocal.
-  const EnergyTable& t = *std::get<Compensated>(make_model("ggx+ms").brdf()).table;
+  const EnergyTable& t = *make_model("ggx+ms").compensated()->table;
   EXPECT_GT(max_asymmetry([&](const Vec3& l, const Vec3& v) { return (1 - t.at(l.z)) * std::pow(1 - t.at(v.z), 2); }),
             1e-3);
 }
@@ -209,7 +223,7 @@ TEST(Compensated, SimdBatchIsTheScalarModelWithinItsBound) {
   EXPECT_LE(worst, rel);
   // Negative control: the base model's batch misses f_ms.
   std::vector<double> base(64);
-  simd::eval_batch(*std::get<Compensated>(m.brdf()).base, simd::Tier::exact, {nx, ny, nz, lx, ly, lz, vx, vy, vz}, base);
+  simd::eval_batch(*m.compensated()->base, simd::Tier::exact, {nx, ny, nz, lx, ly, lz, vx, vy, vz}, base);
   EXPECT_GT(std::abs(base[10] - out[10]) / out[10], 1e-3);
 }
 
@@ -231,7 +245,7 @@ TEST(Compensated, SamplerPassesTheChiSquareCheck) {
   const sampling::Sampler sampler(m);
   EXPECT_TRUE(sampling::check_sampling(sampler, options).passes()) << sampler.description();
   // Negative control: sampling the mixture but stating the base sampler's pdf alone fails.
-  const sampling::Sampler base(*std::get<Compensated>(m.brdf()).base);
+  const sampling::Sampler base(*m.compensated()->base);
   sampling::SamplerUnderTest wrong = sampling::SamplerUnderTest::of(sampler);
   wrong.pdf = [&base](const Vec3& wi, const Vec3& wo) { return base.pdf(wi, wo); };
   EXPECT_FALSE(sampling::check_sampling(wrong, options).passes());

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "reference_table.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace specula {
 namespace {

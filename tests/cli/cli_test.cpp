@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "specula/expr/expr.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "cli_fixture.h"
 #include "text_support.h"
 
@@ -41,6 +41,7 @@ using specula::testing::cells_of;
 using specula::testing::lines_of;
 using specula::testing::read_file;
 using ::testing::IsEmpty;
+using ::testing::MatchesRegex;
 using specula::testing::Cli;
 using specula::testing::Result;
 using specula::testing::listing;
@@ -917,6 +918,19 @@ TEST_F(Cli, HelpEverywhereHasAnExample) {
     EXPECT_EQ(r.code, 0) << what << "\n" << r;
     EXPECT_THAT(r.out, HasSubstr("Example")) << what;
   }
+}
+
+// ---- version --------------------------------------------------------------------------------
+
+// --version and -V: one line for bug reports, exit 0, nothing on stderr: the version
+// (project(VERSION)), the commit (cmake/build_info.cmake; "unknown" outside a git checkout) and
+// Highway's dispatched target, also with --models and before a subcommand.
+TEST_F(Cli, VersionIsOneLine) {
+  const std::string line = ok({"--version"}).out;
+  EXPECT_THAT(line, MatchesRegex("specula [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit ([0-9a-f]+|unknown)\\), "
+                                 "SIMD: [A-Z0-9_]+\n"));
+  EXPECT_EQ(ok({"-V"}).out, line);
+  EXPECT_EQ(ok({"--version", "models"}).out, line);
 }
 
 // ---- export ---------------------------------------------------------------------------------

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "cli_fixture.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/sampling/sampler.h"
 
 namespace specula::testing {

@@ -11,6 +11,7 @@
 
 #include "export_cases.h"
 #include "glsl_support.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exports/exports.h"
 #include "specula/glsl/glsl.h"
 #include "specula/sampling/sampler.h"
@@ -48,7 +49,7 @@ std::vector<std::array<Vec3, 3>> directions() {
 /// which hold there alone.
 std::vector<std::vector<double>> parameter_sets(const Model& model) {
   std::vector<std::vector<double>> sets{{model.params().begin(), model.params().end()}};
-  const bool table_baked = !model.is_lobe() && std::holds_alternative<Compensated>(model.brdf());
+  const bool table_baked = model.compensated() != nullptr;
   if (glsl::coef_is_baked(model) || table_baked || model.params().empty()) return sets;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit;

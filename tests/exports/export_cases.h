@@ -10,7 +10,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 
 namespace specula::testing {
 

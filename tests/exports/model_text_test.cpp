@@ -15,7 +15,7 @@
 #include "specula/exceptions.h"
 #include "specula/exports/exports.h"
 #include "specula/glsl/glsl.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/queries/queries.h"
 
 namespace specula::exports {

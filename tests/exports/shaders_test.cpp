@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "export_compilers.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exports/exports.h"
 #include "specula/glsl/glsl.h"
 

@@ -13,6 +13,7 @@
 #include "glsl_support.h"
 #include "reference_table.h"
 #include "specula/brdf/directions.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/families/families.h"
 #include "specula/glsl/glsl.h"
 #include "specula/normalize/normalize.h"
@@ -80,7 +81,7 @@ void check_simd_lobe(const Family& family, const Model& m, Parts& missing) {
   if (simd::spec_of(m.lobe()).family != family.simd)
     missing.push_back(fmt::format("SIMD: '{}' does not map to its family's kernels", m.id()));
   for (const simd::Tier tier : {simd::Tier::exact, simd::Tier::fast}) {
-    if (!has_kernel(family.simd, tier)) {
+    if (!simd::has_kernel(family.simd, tier)) {
       missing.push_back(fmt::format("SIMD: no {} kernel for the {} family", to_string(tier), family.name));
       continue;
     }
@@ -211,7 +212,7 @@ TEST(Families, AFamilyWithoutAPartIsIncomplete) {
   EXPECT_THAT(missing_parts(without_reference, kLogModels[0]), ::testing::ElementsAre(HasSubstr("reference: no rows")));
 
   Family wrong_closed_form = kSchlick;
-  wrong_closed_form.closed_form.rv = normalize::phong_rv;
+  wrong_closed_form.closed_form.rv = lobes::phong_rv;
   EXPECT_THAT(missing_parts(wrong_closed_form, kSchlickModels[1]), ::testing::Contains(HasSubstr("quadrature gives")));
 
   ModelDefinition unregistered = kGgxModels[0];

@@ -32,6 +32,44 @@ TEST(Metric, NamesRoundTrip) {
   EXPECT_EQ(to_loss(Metric::r2, 0.75), 0.25);
 }
 
+// The option values' names, each from one switch in src/fit/options.cpp: every enumerator up to the
+// count round-trips name → value → name, and the messages list exactly those names. (Their
+// compile-time control is the static_assert(names_complete…) beside each switch: an enumerator
+// added after the last one fails the build there until the count moves.)
+TEST(OptionNames, EveryEnumeratorRoundTrips) {
+  for (const Metric m : enumerators<Metric, kMetricCount>()) EXPECT_EQ(metric_name(parse_metric(metric_name(m))), metric_name(m));
+  for (const Constants c : enumerators<Constants, kConstantsCount>()) {
+    EXPECT_EQ(parse_constants(constants_name(c)), c);
+    EXPECT_EQ(constants_name(parse_constants(constants_name(c))), constants_name(c));
+  }
+  for (const Split s : enumerators<Split, kSplitCount>()) {
+    ASSERT_TRUE(split_named(split_name(s))) << split_name(s);
+    EXPECT_EQ(*split_named(split_name(s)), s);
+  }
+  for (const Choice c : enumerators<Choice, kChoiceCount>()) {
+    EXPECT_EQ(parse_choice(choice_name(c)), c);
+    EXPECT_EQ(choice_name(parse_choice(choice_name(c))), choice_name(c));
+  }
+  EXPECT_EQ(split_named("first"), std::nullopt);
+}
+
+// The messages as they were before the names came from one list, byte for byte.
+TEST(OptionNames, MessagesListTheNames) {
+  const auto message = [](auto parse, const char* text) {
+    try {
+      parse(text);
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(parse_metric, "mse"), "unknown metric 'mse' (expected rms, mae, max-abs, mean-relative or r2)");
+  EXPECT_EQ(message(parse_constants, "all"), "unknown constants mode 'all' (expected fitted, integer or none)");
+  EXPECT_EQ(message(parse_choice, "first"), "unknown choice 'first' (expected parsimonious, knee or best)");
+  EXPECT_EQ((names_listed<Metric, kMetricCount>(metric_name, " | ", " | ")), "rms | mae | max-abs | mean-relative | r2");
+  EXPECT_EQ((names_listed<Split, kSplitCount>(split_name)), "random or last");
+}
+
 TEST(Operators, ParseSymbolsAndFunctionNames) {
   EXPECT_EQ(parse_operators("+,*,/"), (std::vector<Op>{Op::add, Op::mul, Op::div}));
   EXPECT_EQ(parse_operators("+, -, sin ,exp,+"), (std::vector<Op>{Op::add, Op::sub, Op::sin, Op::exp}));

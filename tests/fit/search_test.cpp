@@ -16,7 +16,7 @@
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/values.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 
 namespace specula::fit {
 namespace {
@@ -119,7 +119,7 @@ TEST(Search, RecoversAPolynomialWithoutConstants) {
 // size-12 formula has RMS 2.80e-4; the enumeration alone reaches that at size ≤ 12.
 TEST(Search, MatchesTuringBotOnThePapersRoundedCoefficients) {
   Data d{{"n"}, {io::paper50()}, {}};
-  for (double n : d.columns[0]) d.target.push_back(std::round(normalize::log_rv(n) * 1000) / 1000);
+  for (double n : d.columns[0]) d.target.push_back(std::round(lobes::log_rv(n) * 1000) / 1000);
   Options o = quick(0);
   o.enumerate_max_size = 11;
   const Result r = search(d, o);
@@ -132,7 +132,7 @@ TEST(Search, MatchesTuringBotOnThePapersRoundedCoefficients) {
 // n ≈ 5.6e6 with a 6e12 numerator, n − n + c with 1e10 coefficients); none may reach the front.
 TEST(Search, FrontHoldsNoFitsByCancellation) {
   Data d{{"n"}, {io::paper50()}, {}};
-  for (double n : d.columns[0]) d.target.push_back(std::round(normalize::log_rv(n) * 1000) / 1000);
+  for (double n : d.columns[0]) d.target.push_back(std::round(lobes::log_rv(n) * 1000) / 1000);
   Options o = quick(200);
   o.enumerate_max_size = 11;
   o.weights = SizeWeights::parse("turingbot");

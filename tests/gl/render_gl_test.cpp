@@ -2,6 +2,7 @@
 // (within 1/255 in >= 99.9 % of the pixels) for many models, a mesh with shadows and spheres
 // shadowing each other; the same linear values at chosen pixels; the display transform in the
 // shader; tiles; bad input.
+#include "specula/catalogue/catalogue.h"
 #include "specula/gl/render_gl.h"
 
 #include <gmock/gmock.h>
@@ -33,8 +34,8 @@ Renderer& shared_renderer() {
 
 render::Scene three_light_scene(const Model& model) {
   render::Scene scene = render::default_scene(model);
-  scene.lights = {render::parse_light("dir:-1,1,1"), render::parse_light("dir:1,0.5,1"),
-                  render::parse_light("point:0,3,3")};
+  scene.lights = {render::Light{.direction = {-1, 1, 1}}, render::Light{.direction = {1, 0.5, 1}},
+                  render::Light{.kind = render::LightKind::point, .position = {0, 3, 3}}};
   return scene;
 }
 

@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "glsl_support.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/glsl/glsl.h"
 #include "specula/normalize/log_coef_chebyshev.h"

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "specula/catalogue/catalogue.h"
 #include "specula/render/scene_shader.h"
 
 namespace specula::glsl {

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
+#include <string>
+#include <variant>
 
 #include "reference_table.h"
 #include "specula/families/families.h"
@@ -97,7 +100,7 @@ TEST(LobesReference, EveryFamilyAndTheCutOffAreCovered) {
       if (c > c0 && c < c0 * (1 + 1e-8)) ++just_above_cutoff;
     }
   }
-  // Every built-in family: all of Lobe's but Formula, a user's lobe (tests/models/).
+  // Every built-in family: all of Lobe's but Formula, a user's lobe (tests/catalogue/).
   EXPECT_EQ(families.size(), std::variant_size_v<Lobe> - 1);
   EXPECT_GE(just_above_cutoff, 20);
 }
@@ -182,6 +185,57 @@ RC_GTEST_PROP(LobeProperties, MonotoneInC, ()) {
   const double a = *unit_interval(), b = *unit_interval();
   const double lo = std::min(a, b), hi = std::max(a, b);
   RC_ASSERT(eval(lobe, lo) <= eval(lobe, hi));
+}
+
+// ---- the enums of the vocabulary: Form, simd::Tier, simd::Family ------------------------------
+
+TEST(Form, EveryFormRoundTripsByName) {
+  for (const Form form : enumerators<Form, kFormCount>()) {
+    ASSERT_TRUE(form_named(to_string(form))) << to_string(form);
+    EXPECT_EQ(*form_named(to_string(form)), form);
+  }
+  EXPECT_STREQ(to_string(Form::rv), "rv");
+  EXPECT_STREQ(to_string(Form::nh), "nh");
+  EXPECT_EQ(form_named("RV"), std::nullopt);
+  EXPECT_EQ(form_named(""), std::nullopt);
+  EXPECT_EQ((names_listed<Form, kFormCount>([](Form f) { return to_string(f); })), "rv or nh");
+}
+
+TEST(Tier, EveryTierHasItsName) {
+  std::set<std::string> names;
+  for (const simd::Tier tier : enumerators<simd::Tier, simd::kTierCount>()) names.insert(simd::to_string(tier));
+  EXPECT_EQ(names, (std::set<std::string>{"exact", "fast"}));
+}
+
+// simd::Family names Lobe's alternatives one for one (also a static_assert in lobes.h).
+TEST(Family, OneEnumeratorPerLobeAlternative) { EXPECT_EQ(std::variant_size_v<Lobe>, simd::kFamilyCount); }
+
+// The negative controls of names_complete (exceptions.h), at compile time: what a switch of names
+// that is wrong for its count looks like, and that the check refuses it.
+enum class Three { a, b, c };
+constexpr const char* three_name(Three t) {
+  switch (t) {
+    case Three::a: return "a";
+    case Three::b: return "b";
+    case Three::c: return "c";
+  }
+  return "";
+}
+constexpr const char* three_missing(Three t) { return t == Three::b ? "" : three_name(t); }
+constexpr const char* three_repeated(Three t) { return t == Three::c ? "a" : three_name(t); }
+static_assert(names_complete<Three, 3>(three_name));
+static_assert(!names_complete<Three, 2>(three_name), "c added after the count's last enumerator");
+static_assert(!names_complete<Three, 4>(three_name), "a count past the enum");
+static_assert(!names_complete<Three, 3>(three_missing), "an enumerator without a name");
+static_assert(!names_complete<Three, 3>(three_repeated), "two enumerators with one name");
+static_assert(enum_named<Three, 3>("c", three_name) == Three::c);
+static_assert(!enum_named<Three, 3>("d", three_name));
+
+TEST(EnumNames, ListsAndEnumerators) {
+  EXPECT_EQ((names_listed<Three, 3>(three_name)), "a, b or c");
+  EXPECT_EQ((names_listed<Three, 3>(three_name, " | ", " | ")), "a | b | c");
+  EXPECT_EQ((names_listed<Three, 1>(three_name)), "a");
+  EXPECT_EQ((enumerators<Three, 3>()), (std::array{Three::a, Three::b, Three::c}));
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 #include "specula/normalize/log_coef_float.h"
 
 namespace specula::normalize {
@@ -20,7 +20,7 @@ Worst worst_relative_error(double log10_lo, double log10_hi, int points) {
   Worst worst;
   for (int i = 0; i <= points; ++i) {
     const T n = static_cast<T>(std::pow(10.0, log10_lo + (log10_hi - log10_lo) * i / points));
-    const double exact = log_rv(static_cast<double>(n));
+    const double exact = lobes::log_rv(static_cast<double>(n));
     const double error = std::abs(static_cast<double>(log_rv_approx<T>(n)) / exact - 1);
     if (error > worst.error) worst = {error, static_cast<double>(n)};
   }

@@ -12,6 +12,11 @@
 namespace specula::normalize {
 namespace {
 
+using lobes::blinn_phong_nh;  // the closed forms (lobes/closed_form.h), checked here beside quadrature
+using lobes::log_rv;
+using lobes::phong_rv;
+using lobes::schlick_rv;
+
 lobes::Lobe lobe_from(const std::string& family, double n, double s) {
   if (family == "power") return lobes::Power<>{n};
   if (family == "schlick") return lobes::Schlick<>{n};

@@ -16,7 +16,7 @@
 #include "render_support.h"
 #include "specula/analysis/albedo.h"
 #include "specula/exceptions.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/render/image_io.h"
 
 namespace specula::render {
@@ -168,7 +168,7 @@ Deviation furnace_against_one(const Model& model, double stated_error) {
   return deviation(e, scene.camera, [](const Vec3&, const Vec3&) { return 1.0; }, stated_error);
 }
 
-double albedo_error(const Model& compensated) { return std::get<Compensated>(compensated.brdf()).table->albedo_error; }
+double albedo_error(const Model& compensated) { return compensated.compensated()->table->albedo_error; }
 
 // Kulla-Conty's compensation makes GGX with F = 1 reflect all it receives at every angle: the
 // furnace image is flat. Without it, rough GGX loses energy at grazing angles (negative control).

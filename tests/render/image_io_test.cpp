@@ -171,11 +171,5 @@ TEST(ImageFiles, ReadingBadFilesFailsInOneLineNamingThePath) {
   expect_error(dir / "folder.png", "it is a directory");
 }
 
-TEST(ExrPixelName, ParsesHalfAndFloat) {
-  EXPECT_EQ(parse_exr_pixel("half"), ExrPixel::half);
-  EXPECT_EQ(parse_exr_pixel("float"), ExrPixel::float32);
-  EXPECT_THROW(parse_exr_pixel("double"), InvalidArgument);
-}
-
 }  // namespace
 }  // namespace specula::render

@@ -1,5 +1,6 @@
 // The CPU renderer (include/specula/render/render.h): every pixel against shading computed by hand,
 // energy bounds, bit-identical images for any thread count, meshes and their shadows, bad input.
+#include "specula/catalogue/catalogue.h"
 #include "specula/render/render.h"
 
 #include <gmock/gmock.h>

@@ -1,6 +1,7 @@
 // The scene shader's text and values (include/specula/render/scene_shader.h): every shader accepted by
 // glslangValidator for every model and dialect, ASCII and cited, the uniforms documented; the
 // uniform values and mesh textures laid out as the shader reads them; the limits.
+#include "specula/catalogue/catalogue.h"
 #include "specula/render/scene_shader.h"
 
 #include <gmock/gmock.h>
@@ -91,10 +92,34 @@ TEST(SceneShader, DocumentsEveryUniformWithTheDefaultScenesValue) {
   EXPECT_THAT(shader, HasSubstr("camera position [0, 0, 3.8"));
 }
 
+// The names are written once, in scene_uniform: the shader declares exactly those, in that order,
+// and SceneUniforms::visit passes every one but the samplers, in the same order.
+TEST(SceneShader, DeclaresTheUniformsOfTheOneListAndVisitPassesThem) {
+  const std::string shader = scene_fragment_shader(make_model("ggx"), glsl::Dialect::webgl2);
+  const std::regex declaration(R"(^uniform (highp )?(\w+) (\w+)(\[\w+\])?;$)");
+  std::vector<std::string> declared;
+  for (const std::string& line : testing::lines_of(shader)) {
+    std::smatch match;
+    if (std::regex_match(line, match, declaration)) declared.push_back(match[3]);
+  }
+  std::vector<std::string> listed, visited;
+  for (const SceneUniform& u : scene_uniform::all) listed.emplace_back(u.name);
+  EXPECT_EQ(declared, listed);
+  EXPECT_THAT(shader, HasSubstr("uniform vec4 u_spheres[SCENE_MAX_SPHERES];\n"));
+  EXPECT_THAT(shader, HasSubstr("uniform highp sampler2D u_bvh;\n"));
+  const SceneUniforms u = scene_uniforms(default_scene(make_model("ggx")), {8, 8});
+  u.visit([&](const SceneUniform& uniform, const auto&) { visited.emplace_back(uniform.name); });
+  std::erase_if(listed, [](const std::string& name) {
+    return name == scene_uniform::triangles.name || name == scene_uniform::bvh.name;
+  });
+  EXPECT_EQ(visited, listed);
+}
+
 TEST(SceneUniforms, CameraLightsAndMaterialAsPinholeRaysAndTheShaderNeedThem) {
   Scene scene = default_scene(make_model("schlick-modified", {{"n", 7}, {"s", 2}}));
   scene.camera = {{1, 2, 3}, {1, 2, 0}, {0, 1, 0}, 90};
-  scene.lights = {parse_light("dir:0,0,2:1,0.5,0.25:2"), parse_light("point:1,2,3:1,1,1:9")};
+  scene.lights = {Light{.direction = {0, 0, 2}, .colour = {1, 0.5, 0.25}, .intensity = 2},
+                  Light{.kind = LightKind::point, .position = {1, 2, 3}, .intensity = 9}};
   scene.spheres.push_back({{1, 1, 1}, 0.5});
   const SceneUniforms u = scene_uniforms(scene, {200, 100}, Display{1.5, ToneMap::aces});
   EXPECT_EQ(u.resolution, (std::array<float, 2>{200, 100}));

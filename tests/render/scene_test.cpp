@@ -1,5 +1,6 @@
-// Scenes (include/specula/render/scene.h, bvh.h): light specs, OBJ loading, validation, and the
-// BVH against brute force.
+// Scenes (include/specula/render/scene.h, bvh.h): lights, scenes from typed descriptions, the
+// material, OBJ loading, validation, and the BVH against brute force.
+#include "specula/catalogue/catalogue.h"
 #include "specula/render/scene.h"
 
 #include <gmock/gmock.h>
@@ -18,32 +19,76 @@ namespace {
 using ::testing::HasSubstr;
 using specula::testing::TempDir;
 
-TEST(ParseLight, ReadsDirectionalAndPointLightsWithDefaults) {
-  const Light d = parse_light("dir:1,2,3");
-  EXPECT_EQ(d.kind, LightKind::directional);
-  EXPECT_EQ(d.direction.z, 3);
-  EXPECT_EQ(d.colour, (Rgb{1, 1, 1}));
-  EXPECT_EQ(d.intensity, 1);
-  const Light p = parse_light("point:-1,0.5,4:1,0.9,0.8:25");
-  EXPECT_EQ(p.kind, LightKind::point);
-  EXPECT_EQ(p.position.x, -1);
-  EXPECT_EQ(p.colour, (Rgb{1, 0.9, 0.8}));
-  EXPECT_EQ(p.intensity, 25);
+// The render library takes typed values: a light is built, not parsed (the CLI's --light syntax
+// is read in apps/specula/scene_options.cpp, tested in tests/cli/scene_options_test.cpp).
+TEST(Light, ToStringWritesEveryPart) {
+  EXPECT_EQ(to_string(Light{}), "dir:-1,1,1:1,1,1:1");
+  const Light p{.kind = LightKind::point, .position = {-1, 0.5, 4}, .colour = {1, 0.9, 0.8}, .intensity = 25};
   EXPECT_EQ(to_string(p), "point:-1,0.5,4:1,0.9,0.8:25");
-  EXPECT_EQ(to_string(parse_light(to_string(d))), to_string(d));
 }
 
-TEST(ParseLight, RejectsMalformedSpecsNamingThem) {
-  for (const char* spec : {"spot:1,2,3", "dir", "dir:1,2", "dir:1,2,3,4", "dir:a,b,c", "dir:0,0,0",
-                           "dir:1,2,3:1,1", "dir:1,2,3:1,1,1:-1", "point:1,2,3:1,1,1:1:5", "dir:1,2,nan",
-                           "point:1,2,3:-1,1,1", ""}) {
+TEST(CheckLight, NamesTheLightAndWhatIsWrong) {
+  const auto error_of = [](const Light& light) -> std::string {
     try {
-      parse_light(spec);
-      ADD_FAILURE() << "accepted '" << spec << "'";
+      check_light(light, "the lamp");
     } catch (const InvalidArgument& e) {
-      EXPECT_THAT(e.what(), HasSubstr(std::string("'") + spec + "'")) << spec;
+      return e.what();
     }
-  }
+    return "no error";
+  };
+  EXPECT_EQ(error_of(Light{}), "no error");
+  EXPECT_EQ(error_of(Light{.direction = {0, 0, 0}}), "the lamp: the direction must be finite and non-zero");
+  EXPECT_EQ(error_of(Light{.kind = LightKind::point, .position = {0, 0, 0}}), "no error");
+  EXPECT_EQ(error_of(Light{.kind = LightKind::point, .position = {0, std::nan(""), 0}}),
+            "the lamp: the direction must be finite and non-zero");
+  EXPECT_EQ(error_of(Light{.colour = {-1, 1, 1}}), "the lamp: colour and intensity must be finite and ≥ 0");
+  EXPECT_EQ(error_of(Light{.intensity = INFINITY}), "the lamp: colour and intensity must be finite and ≥ 0");
+}
+
+bool same(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+TEST(MakeScene, IsTheDefaultSceneWithWhatTheDescriptionChooses) {
+  const Model model = make_model("phong");
+  const Scene plain = make_scene(model, {});
+  const Scene reference = default_scene(model);
+  EXPECT_EQ(to_string(plain.lights.at(0)), to_string(reference.lights.at(0)));
+  EXPECT_EQ(plain.spheres.size(), 1u);
+  EXPECT_TRUE(same(plain.camera.position, reference.camera.position));
+  EXPECT_EQ(plain.material.diffuse, reference.material.diffuse);
+  EXPECT_EQ(plain.material.ambient, reference.material.ambient);
+
+  const Light point{.kind = LightKind::point, .position = {1, 2, 3}, .intensity = 9};
+  const Scene chosen = make_scene(model, {.lights = std::vector<Light>{point, Light{}},
+                                          .diffuse = Rgb{0.1, 0.2, 0.3},
+                                          .specular = std::nullopt,
+                                          .ambient = Rgb{0, 0, 0}});
+  ASSERT_EQ(chosen.lights.size(), 2u);
+  EXPECT_EQ(to_string(chosen.lights[0]), "point:1,2,3:1,1,1:9");
+  EXPECT_EQ(chosen.material.diffuse, (Rgb{0.1, 0.2, 0.3}));
+  EXPECT_EQ(chosen.material.specular, reference.material.specular);
+  EXPECT_EQ(chosen.material.ambient, (Rgb{0, 0, 0}));
+  EXPECT_TRUE(make_scene(model, {.lights = std::vector<Light>{}}).lights.empty());
+
+  std::vector<Triangle> mesh(1);
+  mesh[0].vertices = {Vec3{0, 0, 0}, Vec3{2, 0, 0}, Vec3{0, 2, 0}};
+  const Scene meshed = make_scene(model, {.mesh = mesh});
+  EXPECT_TRUE(meshed.spheres.empty());
+  EXPECT_EQ(meshed.triangles.size(), 1u);
+  EXPECT_TRUE(same(meshed.camera.look_at, framing(mesh).look_at));
+  EXPECT_TRUE(same(meshed.camera.position, framing(mesh).position));
+}
+
+TEST(Material, ItsBrdfIsDiffuseOverPiPlusSpecularTimesFAndItsAmbientTermAmbientTimesDiffuse) {
+  Material m(make_model("phong"));
+  m.diffuse = {0.5, 0.25, 1};
+  m.specular = {1, 2, 4};
+  m.ambient = {0.1, 0.2, 0.4};
+  const Rgb brdf = m.brdf(0.5);
+  EXPECT_DOUBLE_EQ(brdf.r, 0.5 / M_PI + 0.5);
+  EXPECT_DOUBLE_EQ(brdf.g, 0.25 / M_PI + 1);
+  EXPECT_DOUBLE_EQ(brdf.b, 1 / M_PI + 2);
+  EXPECT_EQ(m.brdf(0), m.diffuse * (1 / M_PI));
+  EXPECT_EQ(m.ambient_radiance(), (Rgb{0.05, 0.05, 0.4}));
 }
 
 constexpr const char* kTetrahedron =

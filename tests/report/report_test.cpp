@@ -11,7 +11,7 @@
 #include "specula/exceptions.h"
 #include "specula/expr/expr.h"
 #include "specula/models/model.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/normalize/normalize.h"
 #include "specula/report/report.h"
 #include "text_support.h"
@@ -181,7 +181,7 @@ TEST_F(BeyondThePaperTest, AlbedosMatchClosedForms) {
   // Lafortune's k = (n + 1)/(2π) on Phong's exactly normalized lobe: ρ(0°) = (n + 1)/(n + 2).
   EXPECT_EQ(row(energy, {"phong-lafortune", "rv", "rv"})[3], fmt::format("{:.6g}", (n + 1) / (n + 2)));
   // Phong's rv k used in nh: ρ(0°) = k_rv / k_nh, both closed forms (docs/math.md §2).
-  const double phong_in_nh = normalize::phong_rv(n) / normalize::blinn_phong_nh(n);
+  const double phong_in_nh = lobes::phong_rv(n) / lobes::blinn_phong_nh(n);
   EXPECT_EQ(row(energy, {"phong-normalized", "nh", "rv"})[3], fmt::format("{:.6g}", phong_in_nh));
   // Lambert's ρ is its albedo at every angle.
   EXPECT_EQ(row(energy, {"lambert", "—", "—"})[3], "1");
@@ -227,7 +227,7 @@ TEST_F(BeyondThePaperTest, PublishedFormulasAgainstExactCoefficients) {
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const double n = std::stod(rows[i][0]);
     EXPECT_NEAR(std::stod(rows[i][3]), -1 / (n + 2), 1e-14) << n;
-    EXPECT_NEAR(std::stod(rows[i][2]), (n + 8) / (8 * std::numbers::pi) / normalize::blinn_phong_nh(n) - 1, 1e-14) << n;
+    EXPECT_NEAR(std::stod(rows[i][2]), (n + 8) / (8 * std::numbers::pi) / lobes::blinn_phong_nh(n) - 1, 1e-14) << n;
   }
 }
 

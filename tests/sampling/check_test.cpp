@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 #include "model_ids.h"

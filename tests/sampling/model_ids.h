@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "specula/models/model.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 
 namespace specula::sampling {
 

@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "radial.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/families/families.h"
 #include "model_ids.h"
 #include "specula/sampling/sampler.h"

@@ -13,7 +13,7 @@
 #include "specula/glsl/glsl.h"
 #include "specula/io/table.h"
 #include "specula/io/values.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/normalize/normalize.h"
 #include "specula/render/scene.h"
 #include "specula/render/scene_shader.h"

@@ -21,7 +21,7 @@
 #include "specula/analysis/error.h"
 #include "specula/analysis/monte_carlo.h"
 #include "specula/interrupt/interrupt.h"
-#include "specula/models/model.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/normalize/normalize.h"
 
 namespace specula::serve {

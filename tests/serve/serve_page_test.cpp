@@ -12,7 +12,7 @@
 
 #include "serve_support.h"
 #include "specula/brdf/directions.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/render/image.h"
 #include "specula/render/render.h"
 #include "specula/render/scene.h"

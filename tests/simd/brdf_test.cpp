@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "specula/brdf/directions.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/simd/brdf.h"
 #include "specula/simd/targets.h"

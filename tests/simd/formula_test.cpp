@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "simd/probe_cosines.h"
-#include "specula/models/model_file.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/simd/formula.h"
 #include "specula/simd/lobes.h"
 #include "specula/simd/targets.h"

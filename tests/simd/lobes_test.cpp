@@ -38,7 +38,7 @@ std::string_view family_name(Family family) {
 }
 
 /// The scalar double lobe the batch is held to: its family's (families/<family>.h), or a user's
-/// formula (tests/models/).
+/// formula (tests/catalogue/).
 lobes::Lobe scalar_lobe(const LobeSpec& lobe) {
   if (lobe.family == Family::formula) return *lobe.formula;
   const double params[] = {lobe.n, lobe.s};

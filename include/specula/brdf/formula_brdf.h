@@ -1,5 +1,5 @@
 #pragma once
-// A full BRDF written as a formula (a user-defined model, models/model_file.h) in the dot
+// A full BRDF written as a formula (a user-defined model, catalogue/model_file.h) in the dot
 // products of docs/math.md §1 — nl = N·L, nv = N·V, nh = N·H, vh = V·H, lv = L·V — and its
 // parameters, with named intermediate terms (expr::Program's lets), so that Cook-Torrance, GGX or
 // Ward can be written as a paper writes them. Zero below the horizon (N·L ≤ 0 or N·V ≤ 0), as

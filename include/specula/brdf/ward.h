@@ -2,6 +2,7 @@
 // Ward's anisotropic-Gaussian BRDF in its isotropic form, and the two later normalizations
 // (docs/math.md §2 `ward`).
 #include "specula/brdf/microfacet.h"
+#include "specula/exceptions.h"
 
 namespace specula {
 
@@ -33,7 +34,7 @@ struct Ward {
         return T(rho_s) * dot(h, h) * gauss / (pi * a2 * hn2 * hn2);
       }
     }
-    return T(0);
+    unreachable();
   }
 };
 

@@ -18,7 +18,9 @@ namespace specula::cost {
 
 /// Which implementation evaluates the lobe.
 enum class Path { scalar, exact, fast };  ///< scalar: the lobe struct per value (std::pow, log2…)
+inline constexpr std::size_t kPathCount = static_cast<std::size_t>(Path::fast) + 1;  // fast: the last
 
+/// "scalar", "exact" or "fast".
 const char* to_string(Path path) noexcept;
 
 struct Settings {
@@ -31,7 +33,7 @@ struct Settings {
   bool streaming = true;
   bool threaded = true;                   ///< all cores as well as one (oneTBB)
   std::size_t accuracy_points = 1 << 15;  ///< cosines per region of the accuracy probe
-  /// User lobe models (registered ids, models/model_file.h) measured beside the built-ins, at n
+  /// User lobe models (registered ids, catalogue/model_file.h) measured beside the built-ins, at n
   /// where they have a parameter n: scalar = the Formula per value (expr::Program, libm), exact
   /// and fast = the vectorized formula path (simd/formula.h).
   std::vector<std::string> user_lobes;

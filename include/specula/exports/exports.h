@@ -3,6 +3,7 @@
 // BRDF Explorer .brdf file, and a C++ header that depends on nothing but <cmath>. All of them are
 // written from the definitions the GLSL emitter uses (glsl::model_source): the same functions,
 // the same arithmetic, the normalization computed from the parameters where the GLSL computes it.
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -11,6 +12,7 @@
 namespace specula::exports {
 
 enum class Format { hlsl, msl, brdf, cpp };
+inline constexpr std::size_t kFormatCount = static_cast<std::size_t>(Format::cpp) + 1;  // cpp: the last
 
 /// "hlsl", "msl", "brdf" or "cpp"; throws InvalidArgument otherwise.
 Format parse_format(std::string_view text);

@@ -2,7 +2,7 @@
 // A formula with named intermediate terms, as a paper writes one: `let` steps ("D = …", "G = …"),
 // each usable after it is defined, then a result. Every expression reads from one array of slots:
 // the inputs, then the parameters, then the lets in order, so evaluation is a loop over the steps
-// that writes each let into its slot. User-defined models (models/model_file.h) are programs.
+// that writes each let into its slot. User-defined models (catalogue/model_file.h) are programs.
 //
 // The names `pi` and `e` are constants; an input, parameter or let may not be called so.
 #include <span>

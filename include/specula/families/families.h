@@ -61,8 +61,4 @@ inline std::string_view family_name(const lobes::Lobe& lobe) noexcept {
   return lobe.index() < kLobeFamilyCount ? kFamilies[lobe.index()]->name : "formula";
 }
 
-/// Whether eval_batch has a SIMD kernel of its own for `family` at `tier` in both lane types (not
-/// the fallback, whose kernel counts no operations; a formula is evaluated by its program).
-bool has_kernel(simd::Family family, simd::Tier tier);
-
 }  // namespace specula::families

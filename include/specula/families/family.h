@@ -6,7 +6,7 @@
 // of its own:
 //
 //   part                      field                  read by
-//   scalar formula            scalar, make_lobe      src/models/registry.cpp (Model), tests
+//   scalar formula            scalar, make_lobe      src/catalogue/catalogue.cpp (Model), tests
 //   models                    models, params         the registry (models(): ids, names, k)
 //   normalization             closed_form, models[].normalization / coef
 //                                                    the registry, normalize::closed_form
@@ -23,8 +23,8 @@
 #include <string_view>
 
 #include "specula/models/model.h"
-#include "specula/sampling/method.h"
-#include "specula/simd/lobes.h"
+#include "specula/models/sampling_method.h"
+#include "specula/lobes/simd_bounds.h"
 
 namespace specula::families {
 

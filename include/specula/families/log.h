@@ -4,7 +4,7 @@
 // Every part of the family is stated here (families/family.h).
 #include "specula/families/family.h"
 #include "specula/lobes/log.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 
 namespace specula::families {
 
@@ -44,7 +44,7 @@ inline constexpr Family kLog{
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Log<double>{p[0]}; },
     .simd = simd::Family::log,  // LogExact, LogFast
     .glsl = {"lobes/log.glsl", "specula_log_lobe", ""},
-    .closed_form = {.rv = normalize::log_rv},
+    .closed_form = {.rv = lobes::log_rv},
     .reference = {"lobes.csv", "lobe", "log"},
     .coefficients = {"normalization.csv", "lobe", "log"},
 };

@@ -5,7 +5,7 @@
 
 #include "specula/families/family.h"
 #include "specula/lobes/power.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 
 namespace specula::families {
 
@@ -55,7 +55,7 @@ inline constexpr Family kPower{
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Power<double>{p[0]}; },
     .simd = simd::Family::power,  // PowerExact, PowerExactFloat, PowerFast
     .glsl = {"lobes/power.glsl", "specula_power_lobe", ""},
-    .closed_form = {normalize::phong_rv, normalize::blinn_phong_nh},
+    .closed_form = {lobes::phong_rv, lobes::blinn_phong_nh},
     .reference = {"lobes.csv", "lobe", "power"},
     .coefficients = {"normalization.csv", "lobe", "power"},
 };

@@ -3,7 +3,7 @@
 // bare and exactly normalized models. Every part of the family is stated here (families/family.h).
 #include "specula/families/family.h"
 #include "specula/lobes/schlick.h"
-#include "specula/normalize/closed_form.h"
+#include "specula/lobes/closed_form.h"
 
 namespace specula::families {
 
@@ -34,7 +34,7 @@ inline constexpr Family kSchlick{
     .make_lobe = [](Values p) -> lobes::Lobe { return lobes::Schlick<double>{p[0]}; },
     .simd = simd::Family::schlick,  // Schlick<D, fast>
     .glsl = {"lobes/schlick.glsl", "specula_schlick_lobe", ""},
-    .closed_form = {.rv = normalize::schlick_rv},
+    .closed_form = {.rv = lobes::schlick_rv},
     .reference = {"lobes.csv", "lobe", "schlick"},
     .coefficients = {"normalization.csv", "lobe", "schlick"},
 };

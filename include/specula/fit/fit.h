@@ -21,6 +21,7 @@ namespace specula::fit {
 /// The error a formula is ranked by. Constants are fitted in least squares either way (weighted by
 /// 1/y² for mean_relative); r2 is reported as R² and ranked by 1 − R².
 enum class Metric { rms, mae, max_abs, mean_relative, r2 };
+inline constexpr std::size_t kMetricCount = static_cast<std::size_t>(Metric::r2) + 1;  // r2: the last
 Metric parse_metric(std::string_view name);  // "rms", "mae", "max-abs", "mean-relative", "r2"
 std::string_view metric_name(Metric metric);
 
@@ -33,7 +34,9 @@ double measure(Metric metric, std::span<const double> predicted, std::span<const
 /// fitted: real constants fitted to the data; integer: fitted, then rounded to integers;
 /// none: formulas are built from the variables alone.
 enum class Constants { fitted, integer, none };
-Constants parse_constants(std::string_view name);
+inline constexpr std::size_t kConstantsCount = static_cast<std::size_t>(Constants::none) + 1;  // none: the last
+Constants parse_constants(std::string_view name);  // "fitted", "integer", "none"
+std::string_view constants_name(Constants constants);
 
 /// How much each node adds to a formula's size (integers ≥ 1; leaves count 1).
 class SizeWeights {
@@ -55,7 +58,11 @@ std::vector<expr::Op> parse_operators(std::string_view text);
 /// Every name parse_operators() and SizeWeights::parse() take, space-separated: "+ - * / ^ pow …".
 std::string operator_names();
 
+/// Which rows are held out for the test error: drawn at random (with the seed), or the last ones.
 enum class Split { random, last };
+inline constexpr std::size_t kSplitCount = static_cast<std::size_t>(Split::last) + 1;  // last: the last
+std::optional<Split> split_named(std::string_view name);  // "random", "last"
+std::string_view split_name(Split split);
 
 /// Which formula of the front is reported as the answer.
 ///  parsimonious: the smallest whose error (test error when there is a test set) is within
@@ -65,7 +72,9 @@ enum class Split { random, last };
 ///                formula, in (size, log error) scaled to the unit square.
 ///  best:         the lowest error.
 enum class Choice { parsimonious, knee, best };
-Choice parse_choice(std::string_view name);
+inline constexpr std::size_t kChoiceCount = static_cast<std::size_t>(Choice::best) + 1;  // best: the last
+Choice parse_choice(std::string_view name);  // "parsimonious", "knee", "best"
+std::string_view choice_name(Choice choice);
 
 /// The documented range of each size-like option: search() refuses values outside with
 /// InvalidArgument. Within them memory stays below ~2 GiB (populations, per-island caches and

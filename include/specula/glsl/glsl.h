@@ -4,6 +4,7 @@
 // evaluated in the shader. Each emitted function's first line cites its source, as Filament's
 // surface_brdf.fs does. The GLSL is in src/glsl/shaders/, compiled into the library (docs/glsl.md).
 #include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -14,6 +15,7 @@ namespace specula::glsl {
 /// The GLSL dialects specula emits: desktop GLSL 3.30 core, GLSL ES 3.00, and WebGL 2 (whose
 /// shading language is GLSL ES 3.00; emitted identically, named for the user's benefit).
 enum class Dialect { glsl330, gles300, webgl2 };
+inline constexpr std::size_t kDialectCount = static_cast<std::size_t>(Dialect::webgl2) + 1;  // webgl2: the last
 
 /// "glsl330", "gles300" or "webgl2"; throws InvalidArgument otherwise.
 Dialect parse_dialect(std::string_view text);
@@ -40,6 +42,7 @@ std::string model_glsl(const Model& model);
 /// The languages model_source writes: GLSL, HLSL (Shader Model 4 and later), the Metal Shading
 /// Language, and C++ (double; for exports, include/specula/exports/exports.h).
 enum class Language { glsl, hlsl, msl, cpp };
+inline constexpr std::size_t kLanguageCount = static_cast<std::size_t>(Language::cpp) + 1;  // cpp: the last
 
 /// model_glsl's functions in `language`, rewritten word for word from the same GLSL (same names,
 /// comments, arithmetic and normalization): HLSL and Metal in float, specula_brdf's vec4 a float4,

@@ -1,5 +1,5 @@
 #pragma once
-// A lobe written as a formula (a user-defined model, models/model_file.h): F(c) in the cosine c,
+// A lobe written as a formula (a user-defined model, catalogue/model_file.h): F(c) in the cosine c,
 // or F(u) in u = −ln c, or both (docs/models.md). The formula in u keeps very narrow lobes exact
 // (1 − c underflows where u does not), as the built-in lobes' at_log_cos do.
 //

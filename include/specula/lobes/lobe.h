@@ -13,13 +13,33 @@
 #include <concepts>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <string_view>
+
+#include "specula/exceptions.h"
 
 namespace specula {
 
 /// How a lobe becomes a BRDF f = k·F(c): `rv` uses c = R·V (Phong), `nh` uses c = N·H (Blinn).
 enum class Form { rv, nh };
 
-constexpr const char* to_string(Form form) noexcept { return form == Form::rv ? "rv" : "nh"; }
+/// How many forms there are (`nh` is the last; names_complete below fails on one added after it).
+inline constexpr std::size_t kFormCount = static_cast<std::size_t>(Form::nh) + 1;
+
+/// "rv" or "nh": the one list of the forms' names, which parsing reads too ("" outside the enum).
+constexpr const char* to_string(Form form) noexcept {
+  switch (form) {
+    case Form::rv: return "rv";
+    case Form::nh: return "nh";
+  }
+  return "";
+}
+static_assert(names_complete<Form, kFormCount>([](Form f) { return to_string(f); }));
+
+/// The form named `text` ("rv" or "nh"), if any.
+constexpr std::optional<Form> form_named(std::string_view text) noexcept {
+  return enum_named<Form, kFormCount>(text, [](Form f) { return to_string(f); });
+}
 
 }  // namespace specula
 

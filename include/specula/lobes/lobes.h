@@ -9,11 +9,14 @@
 #include "specula/lobes/log.h"
 #include "specula/lobes/power.h"
 #include "specula/lobes/schlick.h"
+#include "specula/lobes/simd_bounds.h"
 
 namespace specula::lobes {
 
 using Lobe = std::variant<Power<double>, Schlick<double>, SchlickModified<double>, Gauss<double>,
                           Log<double>, Formula>;
+// simd::Family names Lobe's alternatives in this order, one enumerator each.
+static_assert(std::variant_size_v<Lobe> == simd::kFamilyCount);
 
 /// F(c) for a run-time lobe.
 inline double eval(const Lobe& lobe, double c) noexcept {

@@ -4,15 +4,15 @@
 //   f_ms(μ_i, μ_o) = (1 − E(μ_i))(1 − E(μ_o)) / (π (1 − E_avg)),
 // E(μ) the directional albedo of M at μ = cos θ and E_avg = 2∫₀¹ E(μ) μ dμ. Its albedo is
 // E(μ_i) + (1 − E(μ_i)) = 1 at every angle, up to the error of the table that holds E.
-// The model id is "M+ms" for any model id M (models/model.h resolves it); the table is built by
-// the cubature (analysis/compensation.h) on first use and cached per model and parameter values.
+// The model id is "M+ms" for any model id M (catalogue/catalogue.h resolves it); the table is built
+// by the cubature (analysis/energy.h) on first use and cached per model and parameter values.
+// A Model holds one as its implementation and hands it out through Model::compensated().
 // docs/energy-compensation.md.
 #include <cstddef>
 #include <memory>
 #include <string_view>
 #include <vector>
 
-#include "specula/brdf/vec3.h"
 
 namespace specula {
 
@@ -49,13 +49,10 @@ struct EnergyTable {
   double multiple_scattering(double mu_i, double mu_o) const noexcept;
 };
 
-/// A model with Kulla-Conty's multiple-scattering lobe: an alternative of FullBrdf.
+/// What M+ms is made of: M at its parameter values and M's energy table; f = f_M + f_ms.
 struct Compensated {
   std::shared_ptr<const Model> base;
   std::shared_ptr<const EnergyTable> table;
-
-  /// f_M + f_ms; defined in models/model.h, where Model is complete.
-  double operator()(const Vec3& n, const Vec3& l, const Vec3& v) const noexcept;
 };
 
 /// The suffix that names a compensated model, "+ms".

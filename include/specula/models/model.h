@@ -1,7 +1,8 @@
 #pragma once
-// The model catalogue (docs/math.md §2): every model with its id, parameters, default form and
-// normalization, and `Model`, a model with its parameter values bound, ready to evaluate.
-#include <deque>
+// The model types (docs/math.md §2): a model's definition (ModelInfo: id, parameters, default form
+// and normalization, how it is made) and `Model`, a model with its parameter values bound, ready
+// to evaluate: a lobe model k·F(c), a full BRDF, or a compensated model M+ms. The catalogue of
+// models by id (built-in, registered, M+ms) is catalogue/catalogue.h.
 #include <functional>
 #include <map>
 #include <memory>
@@ -12,12 +13,8 @@
 #include <variant>
 #include <vector>
 
-#include "specula/brdf/cook_torrance.h"
-#include "specula/brdf/formula_brdf.h"
-#include "specula/brdf/ggx.h"
-#include "specula/brdf/lambert.h"
+#include "specula/brdf/full_brdf.h"
 #include "specula/brdf/lobe_brdf.h"
-#include "specula/brdf/ward.h"
 #include "specula/lobes/lobes.h"
 #include "specula/models/compensated.h"
 
@@ -42,16 +39,13 @@ enum class ModelKind { lobe, brdf };
 /// How a lobe model's k is defined.
 enum class Normalization {
   none,     ///< k = 1: the bare lobe
-  exact,    ///< k from the exact closed form (normalize/closed_form.h)
+  exact,    ///< k from the exact closed form (lobes/closed_form.h)
   formula,     ///< k from a published formula, exact or not (e.g. the paper's fit)
   quadrature   ///< k = 1 / (albedo at normal incidence), by quadrature (user-defined lobes)
 };
 
 const char* to_string(ModelKind kind) noexcept;
 const char* to_string(Normalization normalization) noexcept;
-
-/// Compensated (models/compensated.h): any model with Kulla-Conty's multiple-scattering lobe.
-using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Lambert, FormulaBrdf, Compensated>;
 
 /// A lobe model: f = k·F(c), c from the form (the run-time twin of LobeBrdf<L>).
 struct LobeModel {
@@ -60,7 +54,7 @@ struct LobeModel {
   double k = 1;
 };
 
-using ModelImpl = std::variant<LobeModel, FullBrdf>;
+using ModelImpl = std::variant<LobeModel, FullBrdf, Compensated>;
 
 struct ModelInfo {
   std::string id;
@@ -83,19 +77,6 @@ struct ModelInfo {
   bool is_builtin() const noexcept { return origin == "built-in"; }
 };
 
-/// Every model, in the order the CLI lists them: the built-in ones, then those registered.
-/// References stay valid while models are registered.
-const std::deque<ModelInfo>& models();
-/// nullptr if unknown. "M+ms" for a known M (not itself compensated) is M's compensated model
-/// (models/compensated.h): not in models(), made on first lookup and kept.
-const ModelInfo* find_model(std::string_view id) noexcept;
-/// Adds user-defined models (models/model_file.h) to models(). Throws InvalidArgument, adding
-/// none, if an id is already taken (by a built-in model or an earlier registration) or repeated.
-/// Not thread-safe against concurrent lookups: register before the work starts.
-void register_models(std::vector<ModelInfo> infos);
-/// Removes every registered model (tests).
-void clear_registered_models();
-
 using ParamValues = std::map<std::string, double, std::less<>>;
 
 class Model {
@@ -109,12 +90,15 @@ class Model {
   double param(std::string_view name) const;
 
   bool is_lobe() const noexcept { return std::holds_alternative<LobeModel>(impl_); }
+  /// M+ms: its base model M and M's energy table; nullptr for any other model. The one accessor
+  /// of compensation: every consumer composes f_M + f_ms from these.
+  const Compensated* compensated() const noexcept { return std::get_if<Compensated>(&impl_); }
   /// Preconditions for the next three: is_lobe().
   const lobes::Lobe& lobe() const noexcept { return std::get<LobeModel>(impl_).lobe; }
   Form form() const noexcept { return std::get<LobeModel>(impl_).form; }
   /// The normalizing coefficient k of a lobe model.
   double coef() const noexcept { return std::get<LobeModel>(impl_).k; }
-  /// Precondition: !is_lobe().
+  /// Precondition: !is_lobe() && !compensated().
   const FullBrdf& brdf() const noexcept { return std::get<FullBrdf>(impl_); }
   /// The same lobe model with coefficient k (e.g. k = 1 for the bare lobe, or a strict k).
   /// Throws InvalidArgument for a full BRDF or a k that is not finite and > 0.
@@ -137,31 +121,26 @@ class Model {
   static double eval(const FullBrdf& b, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
     return std::visit([&](const auto& brdf) { return brdf(n, l, v); }, b);
   }
+  /// f_M + f_ms (models/compensated.h).
+  static double eval(const Compensated& c, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
+    const double nl = dot(n, l), nv = dot(n, v);
+    if (nl <= 0 || nv <= 0) return 0;
+    return (*c.base)(n, l, v) + c.table->multiple_scattering(nl, nv);
+  }
 
   std::shared_ptr<const ModelInfo> info_;
   std::vector<double> values_;
   ModelImpl impl_;
 };
 
-/// The model `id` with the given parameters (others at their defaults), in `form` if given
-/// (lobe models only; k stays the model's own). `id` is a model's id (built-in or registered) or
-/// an inline definition, "lobe: FORMULA" or "brdf: FORMULA" (models/model_file.h), whose
-/// parameters are the formula's other identifiers, each given in `params`. Throws
-/// InvalidArgument naming the problem for an unknown model or parameter, a value out of range
-/// or NaN, a form on a full BRDF, or a bad inline formula.
-Model make_model(std::string_view id, const ParamValues& params = {},
-                 std::optional<Form> form = std::nullopt);
-/// The same for a definition held outside the registry.
+/// The model `info` defines, with the given parameters (others at their defaults), in `form` if
+/// given (lobe models only; k stays the model's own). Throws InvalidArgument naming the problem
+/// for an unknown parameter, a value out of range or NaN, or a form on a full BRDF. By id:
+/// catalogue/catalogue.h.
 Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& params = {},
                  std::optional<Form> form = std::nullopt);
 
 /// "rv" or "nh"; throws InvalidArgument otherwise.
 Form parse_form(std::string_view text);
-
-inline double Compensated::operator()(const Vec3& n, const Vec3& l, const Vec3& v) const noexcept {
-  const double nl = dot(n, l), nv = dot(n, v);
-  if (nl <= 0 || nv <= 0) return 0;
-  return (*base)(n, l, v) + table->multiple_scattering(nl, nv);
-}
 
 }  // namespace specula

@@ -43,8 +43,7 @@ class Image {
 
 enum class ToneMap { none, aces };
 
-/// "none" or "aces"; throws InvalidArgument otherwise.
-ToneMap parse_tone_map(std::string_view text);
+/// "none" or "aces".
 const char* to_string(ToneMap tone_map) noexcept;
 
 /// How linear radiance becomes a display value: scaled by 2^exposure, then tone-mapped.

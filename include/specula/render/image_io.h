@@ -20,9 +20,6 @@ using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 enum class ExrPixel { half, float32 };
 
-/// "half" or "float"; throws InvalidArgument otherwise.
-ExrPixel parse_exr_pixel(std::string_view text);
-
 /// 8-bit sRGB through `display` (see to_srgb8), one tEXt chunk per metadata entry (iTXt when
 /// the value is not ASCII).
 void write_png(const std::filesystem::path& path, const Image& image, const Display& display,

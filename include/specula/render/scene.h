@@ -3,6 +3,8 @@
 // directional and point lights, and one material whose specular part is any specula Model.
 #include <array>
 #include <filesystem>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -63,10 +65,11 @@ struct Light {
   double intensity = 1;
 };
 
-/// "dir:x,y,z[:r,g,b[:intensity]]" or "point:x,y,z[:r,g,b[:intensity]]" (colour 1,1,1 and
-/// intensity 1 by default); throws InvalidArgument naming the malformed part.
-Light parse_light(std::string_view spec);
-/// The spec parse_light reads back, e.g. "dir:-1,1,1:1,1,1:1".
+/// Throws InvalidArgument "`what`: …" unless the light's direction (directional) or position (point)
+/// is finite, a direction non-zero, and its colour and intensity finite and ≥ 0.
+void check_light(const Light& light, std::string_view what);
+/// The light as "dir:x,y,z:r,g,b:intensity" or "point:x,y,z:r,g,b:intensity", e.g.
+/// "dir:-1,1,1:1,1,1:1" (validate's messages, image metadata; the CLI's --light reads it back).
 std::string to_string(const Light& light);
 
 /// Lambert diffuse + the model's specular lobe + ambient (docs/math.md §5):
@@ -78,6 +81,12 @@ struct Material {
   Rgb diffuse{0.55, 0.12, 0.1};  ///< albedo ρ_d per channel
   Rgb specular{0.4, 0.4, 0.4};   ///< ρ_s: scales the model's f per channel
   Rgb ambient{0.03, 0.03, 0.03}; ///< ambient radiance, reflected as ambient·diffuse
+
+  /// The material's BRDF per channel where the model's value is f = f(N, L, V): ρ_d/π + ρ_s·f.
+  /// Every CPU renderer shades with it (the GLSL scene shader's scene_surface_radiance as well).
+  Rgb brdf(double f) const noexcept { return diffuse * (1 / std::numbers::pi) + specular * f; }
+  /// What it reflects of the ambient light: ambient·ρ_d.
+  Rgb ambient_radiance() const noexcept { return ambient * diffuse; }
 };
 
 /// The most lights a scene may have (each costs one more lobe evaluation per pixel; 4096
@@ -96,6 +105,22 @@ struct Scene {
 /// One unit sphere at the origin in front of the default camera, one directional light from the
 /// upper left front, and `model` as the specular part of the default material.
 Scene default_scene(const Model& model);
+
+/// What a caller chooses of a scene, as typed values; make_scene takes the rest from
+/// default_scene. The CLI's --scene, --light, --diffuse, … (apps/specula/scene_options.h) and the
+/// server's /api/glsl fields both become one of these: no command-line syntax is read here.
+struct SceneDescription {
+  /// Empty: default_scene's unit sphere and camera; else this mesh alone, seen by framing(mesh).
+  std::vector<Triangle> mesh;
+  /// nullopt: default_scene's light; an empty list: no light (e.g. lit by an environment).
+  std::optional<std::vector<Light>> lights;
+  /// nullopt: Material's defaults.
+  std::optional<Rgb> diffuse, specular, ambient;
+};
+
+/// default_scene(model) with what `description` chooses. Checks nothing: render_cpu, scene_uniforms
+/// and render_environment validate the scene (or call validate).
+Scene make_scene(const Model& model, SceneDescription description);
 
 /// Throws InvalidArgument naming the first invalid part: a degenerate camera, a field of view
 /// outside (0°, 180°), a sphere radius ≤ 0, a zero light direction, a negative or non-finite

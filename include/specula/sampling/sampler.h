@@ -6,7 +6,7 @@
 // Frame: the normal N = +z; ω_i points toward the light (L of docs/math.md §1), ω_o toward the
 // viewer (V); f(ω_i, ω_o) is the model's f(N, L, V). Densities are per unit solid angle of ω_o.
 //
-// Each model is sampled by the method its family states (sampling/method.h): about R for lobes in
+// Each model is sampled by the method its family states (models/sampling_method.h): about R for lobes in
 // `rv` form, over the half vector H for lobes in `nh` form (ω_o = 2(ω_i·H)H − ω_i, pdf(ω_o) =
 // pdf(H)/(4 ω_o·H)), a microfacet distribution for full BRDFs. Tabulated methods mix a share of
 // cosine-weighted sampling in (one-sample mixture: pdf = (1 − s)·pdf_lobe + s·cos θ_o/π), so that
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "specula/models/model.h"
-#include "specula/sampling/method.h"
+#include "specula/models/sampling_method.h"
 
 namespace specula::sampling {
 

@@ -12,7 +12,8 @@
 // ε = std::numeric_limits<T>::epsilon() of the lane type (2⁻²³ float, 2⁻⁵² double), as a
 // relative error. F's peak is F(1) = 1.
 //
-// The bounds, with F the scalar double reference and F̃ the batch result (ErrorBound::allowed):
+// The bounds (their types in lobes/simd_bounds.h), with F the scalar double reference and F̃ the
+// batch result (ErrorBound::allowed):
 //
 //   |F̃ − F| ≤ (rel + rel_per_ln·|ln F|)·F + abs   where F ≥ floor
 //   |F̃ − F| ≤ abs_below                           where F < floor
@@ -40,15 +41,9 @@
 #include <span>
 
 #include "specula/lobes/lobes.h"
+#include "specula/lobes/simd_bounds.h"
 
 namespace specula::simd {
-
-enum class Tier { exact, fast };
-
-constexpr const char* to_string(Tier tier) noexcept { return tier == Tier::exact ? "exact" : "fast"; }
-
-/// The lobe families, in lobes::Lobe's order.
-enum class Family { power, schlick, schlick_modified, gauss, log, formula };
 
 /// A lobe with its parameters, whatever its scalar type.
 struct LobeSpec {
@@ -93,33 +88,13 @@ void eval_batch(const L& lobe, Tier tier, std::span<const T> c, std::span<T> out
 /// A formula counts its expression nodes (one operation each, at least).
 double ops_per_value(const LobeSpec& lobe, Tier tier, bool single_precision);
 
-/// A tier's error bound against the scalar double lobe (see the top of this file).
-struct ErrorBound {
-  double rel = 0;
-  double rel_per_ln = 0;
-  double abs = 0;
-  double floor = 0;
-  double abs_below = 0;
-
-  /// The largest |F̃ − F| allowed where the reference is F.
-  constexpr double allowed(double f, double ln_f) const noexcept {
-    return f >= floor ? (rel + rel_per_ln * (ln_f < 0 ? -ln_f : ln_f)) * f + abs : abs_below;
-  }
-};
-
-/// The formula rows of the table above (simd/formula.h's path): measured over the user-written
-/// copies of the built-in lobes, the largest with a little room.
-template <std::floating_point T>
-constexpr ErrorBound formula_error_bound(Tier tier) noexcept {
-  constexpr double eps = 0x1p-52;
-  if (sizeof(T) == 8) return {16 * eps, 4 * eps, 4 * eps, 0x1p-1022, 0x1p-1022};
-  if (tier == Tier::exact) return {0x1p-24 + 16 * eps, 4 * eps, 4 * eps, 0x1p-126, 0x1p-126};
-  return {1e-4, 0, 0, 1e-3, 1e-6};
-}
-
 /// The bound for lanes of type T that `family` states at `tier` (its families/<family>.h), or a
-/// formula's (src/families/families.cpp).
+/// formula's (formula_error_bound).
 template <std::floating_point T>
 ErrorBound error_bound(Family family, Tier tier) noexcept;
+
+/// Whether eval_batch has a SIMD kernel of its own for `family` at `tier` in both lane types (not
+/// the fallback, whose kernel counts no operations; a formula is evaluated by its program).
+bool has_kernel(Family family, Tier tier);
 
 }  // namespace specula::simd

@@ -1,0 +1,36 @@
+#pragma once
+// The model catalogue: every model by its id — the built-in ones (one per model of each family,
+// families/), those registered from model files (catalogue/model_file.h), and "M+ms" for any of
+// them (models/compensated.h) — and making a model from an id or an inline definition. Above
+// analysis, which builds M+ms's energy table; nothing below it looks a model up by id.
+#include <deque>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "specula/models/model.h"
+
+namespace specula {
+
+/// Every model, in the order the CLI lists them: the built-in ones, then those registered.
+/// References stay valid while models are registered.
+const std::deque<ModelInfo>& models();
+/// nullptr if unknown. "M+ms" for a known M (not itself compensated) is M's compensated model
+/// (models/compensated.h): not in models(), made on first lookup and kept.
+const ModelInfo* find_model(std::string_view id) noexcept;
+/// Adds user-defined models (catalogue/model_file.h) to models(). Throws InvalidArgument, adding
+/// none, if an id is already taken (by a built-in model or an earlier registration) or repeated.
+/// Not thread-safe against concurrent lookups: register before the work starts.
+void register_models(std::vector<ModelInfo> infos);
+/// Removes every registered model (tests).
+void clear_registered_models();
+
+/// The model `id` with the given parameters (others at their defaults), in `form` if given
+/// (lobe models only; k stays the model's own). `id` is a model's id (built-in or registered) or
+/// an inline definition, "lobe: FORMULA" or "brdf: FORMULA" (catalogue/model_file.h), whose
+/// parameters are the formula's other identifiers, each given in `params`. Throws
+/// InvalidArgument naming the problem for an unknown model or parameter, a value out of range
+/// or NaN, a form on a full BRDF, or a bad inline formula.
+Model make_model(std::string_view id, const ParamValues& params = {}, std::optional<Form> form = std::nullopt);
+
+}  // namespace specula

@@ -1,0 +1,166 @@
+// The model catalogue (catalogue/catalogue.h): the built-in models of every family
+// (include/specula/families/), then those registered from model files, and M+ms for any of them.
+#include "specula/catalogue/catalogue.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <map>
+#include <mutex>
+
+#include "specula/analysis/energy.h"
+#include "specula/exceptions.h"
+#include "specula/families/families.h"
+#include "specula/catalogue/model_file.h"
+
+namespace specula {
+namespace {
+
+/// A lobe model's k at parameter values `p`, as its normalization says.
+double lobe_coefficient(const families::Family& family, const families::ModelDefinition& model,
+                        std::span<const double> p) {
+  switch (model.normalization) {
+    case Normalization::exact: return family.closed_form.in(model.form)(p[0]);
+    case Normalization::formula: return model.coef(p[0]);
+    case Normalization::none:
+    case Normalization::quadrature: break;  // quadrature: user lobes only
+  }
+  return 1;
+}
+
+/// The registry entry of one model of a built-in family (families/<family>.h).
+ModelInfo builtin_info(const families::Family& family, const families::ModelDefinition& model) {
+  ModelInfo info{std::string(model.id), std::string(model.name), std::string(model.summary),
+                 std::string(model.source), family.kind, model.form, model.normalization,
+                 std::string(model.coef_text), {}, {}, nullptr};
+  for (const auto& p : family.params)
+    info.params.push_back({std::string(p.name), p.default_value, p.min, p.max, p.min_exclusive, std::string(p.meaning)});
+  if (family.kind == ModelKind::brdf)
+    info.make = [&model](std::span<const double> p) -> ModelImpl { return model.make_brdf(p); };
+  else
+    info.make = [&family, &model](std::span<const double> p) -> ModelImpl {
+      return LobeModel{family.make_lobe(p), model.form, lobe_coefficient(family, model, p)};
+    };
+  return info;
+}
+
+std::deque<ModelInfo> build_catalogue() {
+  std::deque<ModelInfo> catalogue;
+  for (const families::Family* family : families::kFamilies)
+    for (const auto& model : family->models) catalogue.push_back(builtin_info(*family, model));
+  return catalogue;
+}
+
+struct Catalogue {
+  std::deque<ModelInfo> models = build_catalogue();
+  const std::size_t builtin_count = models.size();
+};
+
+Catalogue& catalogue() {
+  static Catalogue c;
+  return c;
+}
+
+/// The compensated models looked up so far ("M+ms", models/compensated.h), by id.
+struct CompensatedInfos {
+  std::mutex mutex;
+  std::map<std::string, std::unique_ptr<const ModelInfo>, std::less<>> infos;
+};
+
+CompensatedInfos& compensated_infos() {
+  static CompensatedInfos c;
+  return c;
+}
+
+/// M+ms: M's parameters; made as M at the same values and M's cached energy table (analysis/
+/// energy.h: the table is M's albedo, which is why the catalogue sits above analysis).
+ModelInfo compensated_info(const ModelInfo& base) {
+  ModelInfo info{base.id + std::string(kCompensatedSuffix), base.name + " + multiple scattering",
+                 fmt::format("{} with Kulla-Conty energy compensation (albedo 1)", base.id),
+                 base.source + "; Kulla & Conty 2017", ModelKind::brdf, base.form, Normalization::none, "1",
+                 base.params, {}, nullptr, base.origin};
+  info.make = [&base](std::span<const double> values) -> ModelImpl {
+    ParamValues params;
+    for (std::size_t i = 0; i < values.size(); ++i) params[base.params[i].name] = values[i];
+    // Registry entries live as long as the process (user ones until cleared, with this entry).
+    auto base_model = std::make_shared<const Model>(
+        make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), &base), params));
+    auto table = analysis::cached_energy_table(*base_model);
+    return Compensated{std::move(base_model), std::move(table)};
+  };
+  return info;
+}
+
+const ModelInfo* find_listed(std::string_view id) noexcept {
+  for (const auto& m : models())
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+const ModelInfo* find_compensated(std::string_view id) noexcept {
+  const ModelInfo* base = find_listed(compensated_base_id(id));
+  if (!base || !compensated_base_id(base->id).empty()) return nullptr;  // no M+ms+ms
+  CompensatedInfos& c = compensated_infos();
+  const std::lock_guard lock(c.mutex);
+  auto found = c.infos.find(id);
+  if (found == c.infos.end())
+    found = c.infos.emplace(std::string(id), std::make_unique<const ModelInfo>(compensated_info(*base))).first;
+  return found->second.get();
+}
+
+}  // namespace
+
+const std::deque<ModelInfo>& models() { return catalogue().models; }
+
+void register_models(std::vector<ModelInfo> infos) {
+  for (std::size_t i = 0; i < infos.size(); ++i) {
+    if (const ModelInfo* taken = find_model(infos[i].id))
+      throw InvalidArgument(fmt::format("{}: model id '{}' is already taken ({})", infos[i].origin,
+                                        infos[i].id, taken->is_builtin() ? "a built-in model" : taken->origin));
+    for (std::size_t j = 0; j < i; ++j)
+      if (infos[j].id == infos[i].id)
+        throw InvalidArgument(fmt::format("{}: model id '{}' is defined twice (first at {})", infos[i].origin,
+                                          infos[i].id, infos[j].origin));
+  }
+  for (auto& info : infos) catalogue().models.push_back(std::move(info));
+}
+
+void clear_registered_models() {
+  {
+    CompensatedInfos& compensated = compensated_infos();
+    const std::lock_guard lock(compensated.mutex);
+    std::erase_if(compensated.infos, [](const auto& entry) { return !entry.second->is_builtin(); });
+  }
+  analysis::clear_energy_tables();
+  auto& c = catalogue();
+  c.models.erase(c.models.begin() + static_cast<std::ptrdiff_t>(c.builtin_count), c.models.end());
+}
+
+const ModelInfo* find_model(std::string_view id) noexcept {
+  if (const ModelInfo* listed = find_listed(id)) return listed;
+  try {
+    return find_compensated(id);
+  } catch (...) {  // out of memory: as unknown
+    return nullptr;
+  }
+}
+
+namespace {
+
+std::string model_ids() {
+  std::vector<std::string_view> ids;
+  for (const auto& m : models()) ids.push_back(m.id);
+  return fmt::format("{}; any of them compensated: ID{}", fmt::join(ids, ", "), kCompensatedSuffix);
+}
+
+}  // namespace
+
+Model make_model(std::string_view id, const ParamValues& params, std::optional<Form> form) {
+  if (is_inline_model(id)) return make_model(inline_model(id, params), params, form);
+  const ModelInfo* info = find_model(id);
+  if (!info) throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", id, model_ids()));
+  // Registry entries live as long as the process: shared without ownership.
+  return make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), info), params, form);
+}
+
+}  // namespace specula
