@@ -36,7 +36,7 @@ bench: build
 # every model, kills, signals and slow or heavy clients; bounded (about 8 minutes on 2 cores), exit 1
 # on any fault. docs/robustness.md states the rules it checks.
 hostile: build
-	@python3 bench/hostile/run.py --specula build/release/specula
+	@/usr/bin/python3 bench/hostile/run.py --specula build/release/specula
 
 # The libFuzzer campaign (docs/fuzzing.md): the harnesses of fuzz/ built with clang-16 (ASan +
 # UBSan), each run for 10^6 inputs or 150 s, then a table of executions, coverage and findings.

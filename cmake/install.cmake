@@ -1,6 +1,7 @@
-# Installs the headers, the CLI and each library as a component of the CMake package specula, so
-# that another project can say find_package(specula COMPONENTS core) and link specula::core — and
-# need none of the packages that only render, gl, report or serve link. find_package(specula)
+# Installs the headers, the CLI and each library as a component of the CMake package specula
+# (core, fit, cost, queries, render, gl, report, serve: cmake/specula-components.cmake), so that
+# another project can say find_package(specula COMPONENTS core) and link specula::core — and need
+# none of the packages that only render, gl, report or serve link. find_package(specula)
 # without components loads them all and specula::specula, which links every one.
 include(CMakePackageConfigHelpers)
 include(${CMAKE_CURRENT_LIST_DIR}/specula-components.cmake)

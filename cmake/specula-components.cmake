@@ -7,10 +7,19 @@
 # specula_<component>_needs: the components it builds on, in that order.
 # specula_<component>_packages: find_package arguments, one element per package ("pkg-config:NAME"
 #   for a pkg-config module, imported as PkgConfig::<NAME in upper case with '-' as '_'>).
-set(specula_components core render gl report serve)
+set(specula_components core fit cost queries render gl report serve)
 
 set(specula_core_needs "")
 set(specula_core_packages fmt TBB hwy "tomlplusplus 3")
+
+set(specula_fit_needs core)
+set(specula_fit_packages "")
+
+set(specula_cost_needs core)
+set(specula_cost_packages "")
+
+set(specula_queries_needs core fit)
+set(specula_queries_packages "")
 
 set(specula_render_needs core)
 set(specula_render_packages PNG "OpenEXR 3" tinyobjloader Freetype)
@@ -18,8 +27,8 @@ set(specula_render_packages PNG "OpenEXR 3" tinyobjloader Freetype)
 set(specula_gl_needs core render)
 set(specula_gl_packages "OpenGL COMPONENTS OpenGL EGL")
 
-set(specula_report_needs core render)
+set(specula_report_needs core fit cost render)
 set(specula_report_packages "")
 
-set(specula_serve_needs core render)
+set(specula_serve_needs core fit queries render)
 set(specula_serve_packages pkg-config:cpp-httplib)

@@ -13,9 +13,10 @@
 namespace specula::cli {
 namespace {
 
-// The documented caps: a GGX cell costs ~3 ms on one core (release), so 65536 cells take about a
-// minute and a half on two; Ctrl-C stops any table.
-constexpr std::size_t kMaxAxisValues = 1024, kMaxCells = 65'536;
+// The documented caps (docs/robustness.md, measured): 65536 cells of Cook-Torrance, the costliest
+// built-in albedo, take about a minute on two idle cores; an E_avg costs 100-400 cells, so at most
+// 256 of them. Ctrl-C stops any table.
+constexpr std::size_t kMaxAxisValues = 1024, kMaxCells = 65'536, kMaxAverages = 256;
 constexpr std::size_t kProgressFrom = 256;  // cells: smaller tables finish before progress matters
 
 struct LutOptions {
@@ -156,6 +157,9 @@ void run(const LutOptions& o) {
       throw InvalidArgument(fmt::format("--mu: {} is outside [{:g}, 1]", m, analysis::kMinMu));
   if (sweep.values.size() * mu.size() > kMaxCells)
     throw InvalidArgument(fmt::format("{} x {} cells is more than {}", sweep.values.size(), mu.size(), kMaxCells));
+  if (o.average && sweep.values.size() > kMaxAverages)
+    throw InvalidArgument(fmt::format("--average: {} values of {} is more than {} (each E_avg costs 100-400 cells)",
+                                      sweep.values.size(), sweep.name, kMaxAverages));
   const bool code = o.format == "cpp" || o.format == "glsl";
   if (code) require_even_spacing("--mu", mu, o.format), require_even_spacing("--sweep", sweep.values, o.format);
   const analysis::ModelAt at = model_at(o, sweep);
@@ -184,7 +188,8 @@ void add_lut_command(CLI::App& app) {
                   "without it, one row at the model's values")->type_name("NAME=LIST");
   cmd->add_option("--mu", o->mu, "μ = cos θ_i values, in [1e-9, 1], increasing: list or range, at most 1024")
       ->capture_default_str();
-  cmd->add_flag("--average", o->average, "Also E_avg(p) = 2∫₀¹ E(μ) μ dμ (by quadrature in μ, not from the grid)");
+  cmd->add_flag("--average", o->average,
+                "Also E_avg(p) = 2∫₀¹ E(μ) μ dμ (by quadrature in μ, not from the grid); at most 256 values of p");
   cmd->add_option("--format", o->format, "csv, json, exr (float), png16 (16-bit gray), cpp or glsl (arrays with their "
                                          "bilinear lookup and its measured error)")
       ->capture_default_str()->check(CLI::IsMember({"csv", "json", "exr", "png16", "cpp", "glsl"}));

@@ -8,18 +8,18 @@
 #include <variant>
 
 #include "sampler_cpp.h"
+#include "specula/catalogue/model_meta.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
-#include "specula/queries/queries.h"
 
 namespace specula::exports {
 namespace {
 
-/// "model=ggx alpha=0.3 f0=1": the model and its parameters (queries::model_meta), for a comment.
+/// "model=ggx alpha=0.3 f0=1": the model and its parameters (model_meta), for a comment.
 std::string model_line(const Model& model) {
   std::string line;
-  for (const auto& [name, value] : queries::model_meta(model)) line += fmt::format(" {}={}", name, value);
+  for (const auto& [name, value] : model_meta(model)) line += fmt::format(" {}={}", name, value);
   return expr::comment_text(line.substr(1));
 }
 

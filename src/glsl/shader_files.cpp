@@ -6,15 +6,14 @@
 
 namespace specula::glsl {
 
-const ShaderFile* find_shader_file(std::string_view path) noexcept {
-  const auto all = embedded_shaders();
-  const auto it = std::find_if(all.begin(), all.end(), [&](const ShaderFile& f) { return f.path == path; });
-  return it == all.end() ? nullptr : &*it;
+const ShaderFile* find_shader_file(std::span<const ShaderFile> files, std::string_view path) noexcept {
+  const auto it = std::find_if(files.begin(), files.end(), [&](const ShaderFile& f) { return f.path == path; });
+  return it == files.end() ? nullptr : &*it;
 }
 
-std::string_view shader_file(std::string_view path) {
-  const ShaderFile* file = find_shader_file(path);
-  if (!file) throw std::logic_error(fmt::format("no shader file '{}' in src/glsl/shaders/", path));
+std::string_view shader_file(std::span<const ShaderFile> files, std::string_view path) {
+  const ShaderFile* file = find_shader_file(files, path);
+  if (!file) throw std::logic_error(fmt::format("no embedded shader file '{}'", path));
   return file->text;
 }
 
@@ -44,7 +43,7 @@ void ShaderSource::add_file(std::string_view path) {
   if (!names_.emplace(path).second) return;
   constexpr std::string_view kInclude = "#include \"";
   std::string body;
-  const std::string_view text = shader_file(path);
+  const std::string_view text = shader_file(files_, path);
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = std::min(text.find('\n', at), text.size());
     const std::string_view line = text.substr(at, end - at);

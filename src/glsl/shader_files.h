@@ -1,6 +1,8 @@
 #pragma once
 // The GLSL files of src/glsl/shaders/ (compiled in by cmake/embed_assets.cmake) and a shader's text
-// put together from them. Not installed: glsl/glsl.h and render/scene_shader.h are the library's view.
+// put together from them or from another library's embedded files (render's scene shader,
+// src/render/shader_files.h). Not installed: glsl/glsl.h and render/scene_shader.h are the
+// library's view.
 #include <map>
 #include <set>
 #include <span>
@@ -10,17 +12,23 @@
 namespace specula::glsl {
 
 struct ShaderFile {
-  std::string_view path;  ///< below src/glsl/shaders/: "lobes/log.glsl"
+  std::string_view path;  ///< below the embedded folder (src/glsl/shaders/): "lobes/log.glsl"
   std::string_view text;
 };
 
-/// Every embedded file, sorted by path (generated source).
+/// Every embedded file of src/glsl/shaders/, sorted by path (generated source).
 std::span<const ShaderFile> embedded_shaders();
 
+/// The file at `path` among `files`, or nullptr.
+const ShaderFile* find_shader_file(std::span<const ShaderFile> files, std::string_view path) noexcept;
 /// The embedded file at `path`, or nullptr.
-const ShaderFile* find_shader_file(std::string_view path) noexcept;
+inline const ShaderFile* find_shader_file(std::string_view path) noexcept {
+  return find_shader_file(embedded_shaders(), path);
+}
+/// The text of the file at `path` among `files`. Throws std::logic_error if there is none.
+std::string_view shader_file(std::span<const ShaderFile> files, std::string_view path);
 /// The text of the embedded file at `path`. Throws std::logic_error if there is none.
-std::string_view shader_file(std::string_view path);
+inline std::string_view shader_file(std::string_view path) { return shader_file(embedded_shaders(), path); }
 
 /// Values for a file's placeholders: `${name}` stands for values.at(name).
 using Placeholders = std::map<std::string, std::string, std::less<>>;
@@ -29,9 +37,11 @@ using Placeholders = std::map<std::string, std::string, std::less<>>;
 std::string fill(std::string_view text, const Placeholders& values);
 
 /// A shader's text under construction: each piece once, what a file includes before the file.
+/// Its files are `files` (by default the embedded src/glsl/shaders/).
 class ShaderSource {
  public:
-  explicit ShaderSource(Placeholders values = {}) : values_(std::move(values)) {}
+  explicit ShaderSource(Placeholders values = {}, std::span<const ShaderFile> files = embedded_shaders())
+      : values_(std::move(values)), files_(files) {}
 
   /// Appends `text` and a newline unless a piece called `name` is already there.
   void add(std::string_view name, std::string_view text);
@@ -43,6 +53,7 @@ class ShaderSource {
 
  private:
   Placeholders values_;
+  std::span<const ShaderFile> files_;
   std::set<std::string, std::less<>> names_;
   std::string text_;
 };

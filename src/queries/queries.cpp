@@ -11,6 +11,7 @@
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/catalogue/catalogue.h"
+#include "specula/catalogue/model_meta.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
 #include "specula/glsl/glsl.h"
@@ -112,17 +113,6 @@ Model lobe_model_at(std::string_view field, std::string_view command, const Mode
   make(ModelSpec{ref, params, form, std::nullopt}, spelling);
   params["n"] = n;
   return for_field("n", [&] { return ref.make(params, form); });
-}
-
-std::vector<std::pair<std::string, std::string>> model_meta(const Model& m) {
-  std::vector<std::pair<std::string, std::string>> meta{{"model", std::string(m.id())}};
-  for (std::size_t i = 0; i < m.params().size(); ++i)
-    meta.emplace_back(std::string(m.info().params[i].name), io::format_number(m.params()[i]));
-  if (m.is_lobe()) {
-    meta.emplace_back("form", to_string(m.form()));
-    meta.emplace_back("coef", io::format_number(m.coef()));
-  }
-  return meta;
 }
 
 io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool bare_lobe,

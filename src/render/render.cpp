@@ -49,7 +49,7 @@ struct PreparedLight {
 };
 
 // docs/math.md §5, the paper's local illumination: the shading equation, written once for both
-// render paths (and once in GLSL, src/glsl/shaders/scene/shading.glsl's scene_surface_radiance):
+// render paths (and once in GLSL, src/render/shaders/scene/shading.glsl's scene_surface_radiance):
 //   L_o = ambient·ρ_d + Σ over the lights that reach the point of (ρ_d/π + ρ_s f(N, L, V)) · E · N·L,
 // summed light by light in scene order, the material's terms as Material::ambient_radiance and
 // Material::brdf compute them (render_environment's as well). radiance[j] becomes L_o of surface

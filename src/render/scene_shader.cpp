@@ -8,7 +8,7 @@
 #include "specula/brdf/directions.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
-#include "src/glsl/shader_files.h"
+#include "src/render/shader_files.h"
 
 namespace specula::render {
 namespace {
@@ -132,7 +132,7 @@ SceneGeometry geometry_of(const Scene& scene) noexcept {
 }
 
 std::string scene_vertex_shader(glsl::Dialect dialect) {
-  return glsl::version_header(dialect) + std::string(glsl::shader_file("scene/vertex.glsl"));
+  return glsl::version_header(dialect) + std::string(glsl::shader_file(embedded_shaders(), "scene/vertex.glsl"));
 }
 
 std::string scene_fragment_shader(const Model& model, glsl::Dialect dialect, SceneGeometry geometry) {
@@ -140,7 +140,8 @@ std::string scene_fragment_shader(const Model& model, glsl::Dialect dialect, Sce
                           {"max_spheres", std::to_string(kShaderMaxSpheres)},
                           {"max_lights", std::to_string(kShaderMaxLights)},
                           {"bvh_stack", std::to_string(kShaderBvhStackSize)},
-                          {"uniforms", uniform_declarations()}});
+                          {"uniforms", uniform_declarations()}},
+                         embedded_shaders());
   src.add_file("scene/uniforms.glsl");
   src.add("model", glsl::model_glsl(model));
   src.add_file("scene/main.glsl");

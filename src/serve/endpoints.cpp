@@ -7,6 +7,7 @@
 #include "specula/exceptions.h"
 #include <cmath>
 
+#include "specula/catalogue/model_meta.h"
 #include "specula/glsl/glsl.h"
 #include "specula/queries/queries.h"
 #include "specula/render/scene.h"
@@ -112,7 +113,9 @@ nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits&
     const auto light = f.values("light", 3);
     if (light.size() != 3 || (light[0] == 0 && light[1] == 0 && light[2] == 0))
       fail("light", "light must be a non-zero direction [x, y, z] toward the light");
-    description.lights = {render::Light{.direction = {light[0], light[1], light[2]}}};
+    render::Light lamp;
+    lamp.direction = {light[0], light[1], light[2]};
+    description.lights = {lamp};
   }
   const render::Scene scene = render::make_scene(m, std::move(description));
   const auto size = f.values_or("size", "256,256", 2);
@@ -136,7 +139,7 @@ std::string glsl_endpoint(std::string_view body, const Limits& limits) {
   const std::string function = queries::glsl_function(m, dialect, kKey);
   const glsl::Dialect parsed = glsl::parse_dialect(dialect);
   nlohmann::ordered_json out;
-  for (const auto& [key, value] : queries::model_meta(m)) out[key] = value;
+  for (const auto& [key, value] : model_meta(m)) out[key] = value;
   out["dialect"] = dialect;
   out["entry"] = "specula_brdf";
   out["entry_params"] = glsl::model_params(m);

@@ -81,12 +81,15 @@ TEST_F(Cli, LutBadInputIsExitTwoWithOneLine) {
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--sweep", "alpha"}).err, HasSubstr("expected NAME=LIST"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--sweep", "alpha=0.1:1@300", "--mu", "0.1:1@300"}).err,
               HasSubstr("more than 65536"));
+  EXPECT_THAT(bad({"lut", "--model", "ggx", "--sweep", "alpha=0.1:1@257", "--mu", "1", "--average"}).err,
+              HasSubstr("--average: 257 values of alpha is more than 256"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--mu", "0.1,0.2,0.5", "--format", "glsl"}).err, HasSubstr("evenly spaced"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--format", "png16"}).err, HasSubstr("needs --out"));
   bad({"lut", "--model", "ggx", "--format", "tiff"});
   bad({"lut", "--model", "no-such+ms"});
-  // Negative control: the same command with a valid μ succeeds.
+  // Negative controls: the same command with a valid μ succeeds, and 256 averages are allowed.
   ok({"lut", "--model", "lambert", "--mu", "0.5"});
+  ok({"lut", "--model", "lambert", "--sweep", "rho=0.1:1@256", "--mu", "1", "--average", "-q"});
 }
 
 TEST_F(Cli, LutOutputIsAtomicAndCtrlCLeavesNoFile) {

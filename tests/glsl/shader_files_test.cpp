@@ -1,7 +1,9 @@
-// The GLSL files of src/glsl/shaders/ (src/glsl/shader_files.h): each cites its source on its first
-// line and is ASCII; each is part of some emitted shader (no family's file lies unused); each
-// coefficient file belongs to a normalized lobe model; and how a shader is put together from them
-// (includes once and first, placeholders filled), with the failures of each.
+// The GLSL files of src/glsl/shaders/ (src/glsl/shader_files.h, core's: the models) and of
+// src/render/shaders/ (src/render/shader_files.h, render's: the scene shader): each cites its source
+// on its first line and is ASCII; each is part of some emitted shader (no family's file lies
+// unused); the scene shader's files are render's alone; each coefficient file belongs to a
+// normalized lobe model; and how a shader is put together from them (includes once and first,
+// placeholders filled), with the failures of each.
 #include "src/glsl/shader_files.h"
 
 #include <gtest/gtest.h>
@@ -12,15 +14,23 @@
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/render/scene_shader.h"
+#include "src/render/shader_files.h"
 
 namespace specula::glsl {
 namespace {
 
+/// Every embedded GLSL file: core's, then render's.
+std::vector<ShaderFile> all_files() {
+  std::vector<ShaderFile> all(embedded_shaders().begin(), embedded_shaders().end());
+  all.insert(all.end(), render::embedded_shaders().begin(), render::embedded_shaders().end());
+  return all;
+}
+
 TEST(ShaderFiles, EachCitesItsSourceOnItsFirstLineAndIsAscii) {
   // A year (the paper's), or the specula source or docs/math.md section it implements.
   const std::regex citation(R"(^// .*(\b(1[6-9]|20)\d\d\b|docs/|render/|gl/).*)");
-  ASSERT_GE(embedded_shaders().size(), 25u);
-  for (const ShaderFile& file : embedded_shaders()) {
+  ASSERT_GE(all_files().size(), 30u);
+  for (const ShaderFile& file : all_files()) {
     EXPECT_TRUE(file.path.ends_with(".glsl")) << file.path;
     for (const char ch : file.text) ASSERT_LT(static_cast<unsigned char>(ch), 0x80) << file.path;
     const std::string first(file.text.substr(0, file.text.find('\n')));
@@ -47,7 +57,7 @@ std::string emitted_shaders(const std::vector<std::string>& left_out = {}) {
 /// The files whose first line is in none of `shaders`.
 std::vector<std::string> unused_files(const std::string& shaders) {
   std::vector<std::string> unused;
-  for (const ShaderFile& file : embedded_shaders())
+  for (const ShaderFile& file : all_files())
     if (shaders.find(file.text.substr(0, file.text.find('\n') + 1)) == std::string::npos)
       unused.emplace_back(file.path);
   return unused;
@@ -58,6 +68,21 @@ TEST(ShaderFiles, EachIsPartOfAnEmittedShader) {
   // The negative control: without the Lambert and log-paper models, their files are unused.
   EXPECT_EQ(unused_files(emitted_shaders({"lambert", "log-paper"})),
             (std::vector<std::string>{"brdfs/lambert.glsl", "coefficients/log-paper.glsl"}));
+}
+
+// Core carries the models' GLSL and render the scene shader's: no scene file is core's.
+TEST(ShaderFiles, TheSceneShaderFilesAreRendersAlone) {
+  for (const ShaderFile& file : embedded_shaders()) EXPECT_FALSE(file.path.starts_with("scene/")) << file.path;
+  std::vector<std::string> scene;
+  for (const ShaderFile& file : render::embedded_shaders()) scene.emplace_back(file.path);
+  EXPECT_EQ(scene, (std::vector<std::string>{"scene/display.glsl", "scene/geometry.glsl", "scene/main.glsl",
+                                             "scene/shading.glsl", "scene/uniforms.glsl", "scene/vertex.glsl"}));
+  // Each library's files are found among its own only.
+  EXPECT_NE(find_shader_file(render::embedded_shaders(), "scene/main.glsl"), nullptr);
+  EXPECT_EQ(find_shader_file("scene/main.glsl"), nullptr);
+  EXPECT_EQ(find_shader_file(render::embedded_shaders(), "lobes/log.glsl"), nullptr);
+  ShaderSource scene_source({}, render::embedded_shaders());
+  EXPECT_THROW(scene_source.add_file("lobes/log.glsl"), std::logic_error);
 }
 
 TEST(ShaderFiles, EachCoefficientFileBelongsToANormalizedLobeModel) {

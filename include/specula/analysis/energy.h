@@ -22,7 +22,8 @@ Albedo albedo_at_mu(const Model& model, double mu);
 inline constexpr double kMinMu = 1e-9;
 
 /// E_avg = 2∫₀¹ E(μ) μ dμ = 6∫₀¹ E(s³) s⁵ ds by adaptive Gauss-Kronrod in s = μ^(1/3) (smooth
-/// where E bends near grazing): ≥ 8 digits, as E itself. Sequential; ~100-250 albedos.
+/// where E bends near grazing): ≥ 8 digits, as E itself. Sequential; ~100-250 albedos. For M+ms:
+/// E_avg of M plus the multiple-scattering lobe's average, exact from M's table.
 Albedo average_albedo(const Model& model);
 
 /// The energy table of `base` (EnergyTable: nodes and midpoints in parallel, the measured

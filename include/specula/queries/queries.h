@@ -71,9 +71,6 @@ Form form_named(std::string_view text, Spelling spelling);
 Model lobe_model_at(std::string_view field, std::string_view command, const ModelRef& ref,
                     ParamValues params, double n, std::optional<Form> form, Spelling spelling);
 
-/// A model's metadata in JSON output: id, parameter values, and form and coef for lobe models.
-std::vector<std::pair<std::string, std::string>> model_meta(const Model& m);
-
 // ---- eval --------------------------------------------------------------------------------------
 
 /// Columns cos,value: value = k·F(c), or the bare lobe F(c). Lobe models only (else InvalidField

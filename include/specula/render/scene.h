@@ -58,7 +58,7 @@ enum class LightKind { directional, point };
 struct Light {
   LightKind kind = LightKind::directional;
   Vec3 direction{-1, 1, 1};  ///< directional lights: toward the light, any length
-  Vec3 position;             ///< point lights
+  Vec3 position{};           ///< point lights
   Rgb colour{1, 1, 1};
   /// Directional: the irradiance E on a surface facing the light is colour·intensity;
   /// point: the radiant intensity, E = colour·intensity / d² at distance d.
@@ -111,11 +111,11 @@ Scene default_scene(const Model& model);
 /// server's /api/glsl fields both become one of these: no command-line syntax is read here.
 struct SceneDescription {
   /// Empty: default_scene's unit sphere and camera; else this mesh alone, seen by framing(mesh).
-  std::vector<Triangle> mesh;
+  std::vector<Triangle> mesh{};
   /// nullopt: default_scene's light; an empty list: no light (e.g. lit by an environment).
-  std::optional<std::vector<Light>> lights;
+  std::optional<std::vector<Light>> lights{};
   /// nullopt: Material's defaults.
-  std::optional<Rgb> diffuse, specular, ambient;
+  std::optional<Rgb> diffuse{}, specular{}, ambient{};
 };
 
 /// default_scene(model) with what `description` chooses. Checks nothing: render_cpu, scene_uniforms
