@@ -1,5 +1,5 @@
 # The front door. `make report` and `make test` work on a fresh Debian 12 machine as root.
-.PHONY: all deps build debug test report bench hostile fuzz clean
+.PHONY: all deps build debug test report bench bench-fit hostile fuzz clean
 
 all: build
 
@@ -30,6 +30,14 @@ bench: build
 	@build/release/bench/specula_lut_bench
 	@build/release/bench/specula_bench
 	@build/release/bench/specula_render_bench
+
+# Symbolic recovery (docs/fit.md): `specula fit` on Nguyen-1…12 as DSR specifies them, 20 s each
+# (about 4-5 minutes on 2 cores), judged by SRBench's symbolic-solution criterion with SymPy; prints
+# the table and the count recovered/12 (bench/fit/nguyen_recovery.py).
+bench-fit: deps
+	@cmake --preset release >/dev/null
+	@cmake --build --preset release --target specula_cli
+	@/usr/bin/python3 bench/fit/nguyen_recovery.py --specula build/release/specula
 
 # The hostile test (bench/hostile): the release CLI and `specula serve` on loopback against
 # malformed input, user models (files, inline, definition objects), every export compiled, M+ms of

@@ -6,7 +6,11 @@
 //   - to_infix() is canonical: printing the re-parsed expression gives the same text;
 //   - evaluate_batch() agrees bit for bit with evaluate() (row by row, and on the SIMD path);
 //   - the other printers (C++, GLSL, LaTeX, Python: not meant to be read back) do not fail;
-//   - parse() with a fixed variable list accepts or rejects with InvalidArgument.
+//   - parse() with a fixed variable list accepts or rejects with InvalidArgument;
+//   - simplify() of what parse() accepts ends, throws nothing, keeps the variables, prints, and
+//     at most doubles the size; on the sample points it agrees with the original wherever
+//     agrees_on() says the two agree (agrees_on is what the fit trusts to keep a rewrite).
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +21,7 @@
 
 #include "fuzz_support.h"
 #include "specula/expr/expr.h"
+#include "specula/expr/simplify.h"
 
 namespace {
 
@@ -92,6 +97,24 @@ void check_batch(const expr::Expression& e, std::size_t rows) {
   }
 }
 
+void check_simplify(const expr::Expression& e) {
+  const expr::Expression s = expr::simplify(e);
+  fuzz::require(s.variables() == e.variables(), "simplify changed the variables of " + expr::to_infix(e));
+  fuzz::require(s.size() <= 2 * e.size() + 2, "simplify more than doubled " + expr::to_infix(e));
+  (void)expr::to_infix(s);
+  const auto values = columns(e.variables().size(), kPoints);
+  const std::vector<std::span<const double>> spans(values.begin(), values.end());
+  if (!expr::agrees_on(e, s, spans)) return;
+  for (std::size_t r = 0; r < kPoints; ++r) {
+    const auto point = row(values, r);
+    const double a = expr::evaluate(e, point), b = expr::evaluate(s, point);
+    if (std::isfinite(a) && std::isfinite(b))
+      fuzz::require(std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)),
+                    "agrees_on accepted a simplification that differs at point " + std::to_string(r) + ": " +
+                        expr::to_infix(e) + " against " + expr::to_infix(s));
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -106,6 +129,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)expr::to_glsl(*e);
       (void)expr::to_latex(*e);
       (void)expr::to_python(*e);
+      if (e->size() <= 512) check_simplify(*e);
     });
     fuzz::require(printed, "a printer or evaluate threw InvalidArgument for an expression parse() accepted");
   }

@@ -6,12 +6,20 @@
 #include <string>
 #include <vector>
 
+#include "specula/catalogue/catalogue.h"
+#include "specula/exceptions.h"
 #include "specula/io/table.h"
 #include "specula/io/values.h"
-#include "specula/catalogue/catalogue.h"
 #include "specula/queries/queries.h"
 
 namespace specula::cli {
+
+/// An option's check that its value is one of E's names (its to_string): the one list that the
+/// library parses the value from (choice_named), and the server reads too.
+template <class E, std::size_t count>
+CLI::IsMember one_of() {
+  return CLI::IsMember(names_of<E, count>());
+}
 
 /// --model ID, --param NAME=VALUE (repeatable) and --form rv|nh.
 struct ModelOptions {

@@ -22,8 +22,10 @@ struct AlbedoOptions {
 };
 
 io::Table albedo_table(const AlbedoOptions& o) {
-  const queries::AlbedoQuery q{option_values("--theta", o.theta, kMaxAngles), o.method, o.samples, o.seed};
-  if (q.method == "monte-carlo" && static_cast<double>(q.samples) * static_cast<double>(q.theta_deg.size()) > kMaxTotalSamples)
+  const queries::AlbedoQuery q{option_values("--theta", o.theta, kMaxAngles),
+                               queries::albedo_method_named(o.method, queries::Spelling::option), o.samples, o.seed};
+  const double total = static_cast<double>(q.samples) * static_cast<double>(q.theta_deg.size());
+  if (q.method == queries::AlbedoMethod::monte_carlo && total > kMaxTotalSamples)
     throw InvalidArgument(fmt::format("--samples {} at {} angles is more than {:g} samples in all", q.samples,
                                       q.theta_deg.size(), kMaxTotalSamples));
   return queries::albedo_table(o.model.make(), q, queries::Spelling::option);
@@ -38,7 +40,7 @@ void add_albedo_command(CLI::App& app) {
   o->model.add_coef_to(*cmd);
   cmd->add_option("--theta,-t", o->theta, "Incidence angles in degrees, [0, 90): list or range, at most 10000 angles")->capture_default_str();
   cmd->add_option("--method", o->method, "cubature (deterministic, 8+ digits) or monte-carlo (adds standard_error)")->capture_default_str()
-      ->check(CLI::IsMember({"cubature", "monte-carlo"}));
+      ->check(one_of<queries::AlbedoMethod, queries::kAlbedoMethodCount>());
   cmd->add_option("--samples", o->samples, "Monte-Carlo samples per angle, [1, 1e9]; at most 1e10 over all angles")->capture_default_str()->check(CLI::Range(1, 1'000'000'000));
   cmd->add_option("--seed", o->seed, "Monte-Carlo seed")->capture_default_str();
   o->output.add_to(*cmd);

@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "specula/catalogue/catalogue.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/gl/render_gl.h"
 #include "scene_options.h"
 #include "specula/exceptions.h"
@@ -31,10 +32,15 @@ struct CompareOptions {
   bool quiet = false;
 };
 
-// `id` if the catalogue has it; else InvalidArgument "unknown model …" listing the known ids.
-const std::string& known(const std::string& id) {
-  if (!find_model(id)) make_model(id);
-  return id;
+// The definition `id` names (InvalidField "unknown model …" listing the known ids); a bad inline
+// definition's error after the option and the text it is in.
+std::shared_ptr<const ModelInfo> definition_of(std::string_view option, const std::string& id) {
+  try {
+    return model_definition(id);
+  } catch (const InvalidField& e) {
+    if (!is_inline_model(id)) throw;
+    throw InvalidArgument(fmt::format("{} '{}': {}", option, id, e.what()));
+  }
 }
 
 std::vector<std::string> model_ids(const std::string& list) {
@@ -44,26 +50,25 @@ std::vector<std::string> model_ids(const std::string& list) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
     const std::string id = list.substr(start, comma - start);
     if (id.empty()) throw InvalidArgument(fmt::format("--models '{}' has an empty model id", list));
-    ids.push_back(known(id));
+    definition_of("--models", id);
+    ids.push_back(id);
     start = comma + 1;
   }
   return ids;
 }
 
-// `id` with the given parameters it has and the form if it is a lobe; `used` collects the names.
-Model model_with(const std::string& id, const ParamValues& values, const std::optional<Form>& form,
-                 std::set<std::string>& used) {
-  // An inline model ("lobe: c^n") is in no catalogue: its parameters are its formula's names.
-  const ModelInfo* catalogued = find_model(id);
-  const std::optional<Model> inline_model = catalogued ? std::nullopt : std::optional(make_model(id));
-  const ModelInfo& info = catalogued ? *catalogued : inline_model->info();
+// `id` (given to `option`) with the given parameters it has and the form if it is a lobe; `used`
+// collects the names.
+Model model_with(std::string_view option, const std::string& id, const ParamValues& values,
+                 const std::optional<Form>& form, std::set<std::string>& used) {
+  const auto definition = definition_of(option, id);  // an inline model's parameters: its formula's names
   ParamValues own;
   for (const auto& [name, value] : values)
-    if (info.find_param(name)) {
+    if (definition->find_param(name)) {
       own[name] = value;
       used.insert(name);
     }
-  return make_model(id, own, info.kind == ModelKind::lobe ? form : std::nullopt);
+  return make_model(id, own, definition->kind == ModelKind::lobe ? form : std::nullopt);
 }
 
 struct Models {
@@ -79,8 +84,8 @@ Models models_of(const CompareOptions& o) {
   const std::optional<Form> form = o.form.empty() ? std::nullopt : std::optional(parse_form(o.form));
   std::set<std::string> used;
   Models m;
-  for (const auto& id : model_ids(o.models)) m.panels.push_back(model_with(id, values, form, used));
-  if (!o.diff.empty()) m.reference = model_with(known(o.diff), values, form, used);
+  for (const auto& id : model_ids(o.models)) m.panels.push_back(model_with("--models", id, values, form, used));
+  if (!o.diff.empty()) m.reference = model_with("--diff", o.diff, values, form, used);
   for (const auto& [name, value] : values)
     if (!used.contains(name))
       throw InvalidArgument(fmt::format("--param {}: no model in this comparison has a parameter '{}'", name, name));
@@ -113,7 +118,7 @@ std::map<std::string, render::Image, std::less<>> render_all(const Models& m, co
                                                              const render::RenderSettings& settings) {
   std::optional<gl::Context> context;
   std::optional<gl::Renderer> renderer;
-  if (o.backend == "gl") renderer.emplace(context.emplace());
+  if (parse_backend(o.backend) == render::Backend::gl) renderer.emplace(context.emplace());
   std::map<std::string, render::Image, std::less<>> images;
   std::vector<const Model*> all;
   for (const auto& model : m.panels) all.push_back(&model);
@@ -213,13 +218,13 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--param,-p", o->params,
                   "NAME=VALUE for every model that has the parameter, repeatable (e.g. -p n=50)");
   cmd->add_option("--form", o->form, "rv or nh for the lobe models; default: each model's own")
-      ->check(CLI::IsMember({"rv", "nh"}));
+      ->check(one_of<Form, kFormCount>());
   cmd->add_option("--diff", o->diff, "Reference model id: add heat maps of each panel's |ΔL| against it");
   o->scene.add_to(*cmd, Picture::compare);
   cmd->add_option("--scale", o->scale, "Top of the heat maps' colour scale (default: the largest |ΔL| shown)");
   cmd->add_option("--backend", o->backend, "cpu (the reference renderer) or gl (OpenGL through EGL: a GPU, or Mesa's llvmpipe)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"cpu", "gl"}));
+      ->check(one_of<render::Backend, render::kBackendCount>());
   cmd->add_option("--out,-o", o->out, "Output image FILE.png (8-bit sRGB)")->required();
   cmd->add_flag("--quiet,-q", o->quiet, "Print nothing on success");
   cmd->footer(

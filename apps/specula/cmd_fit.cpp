@@ -21,7 +21,7 @@ struct FitOptions {
   std::string n = "paper50";
   std::optional<int> round;
   std::string data, target, vars, ops = "+,*,/", constants = "fitted", weights = "default";
-  std::string metric = "rms", split = "random", choose = "parsimonious";
+  std::string metric = "rms", split = "random", choose = "parsimonious", snap = "on";
   std::string format = "table", emit, out;
   fit::Options search;
   std::optional<std::int64_t> generations, evaluations;
@@ -86,6 +86,7 @@ fit::Options search_options(const FitOptions& o) {
                                       names_listed<fit::Split, fit::kSplitCount>(fit::split_name), o.split));
   s.split = *split;
   s.choice = fit::parse_choice(o.choose);
+  s.snap = o.snap == "on";
   s.max_generations = o.generations;
   s.max_evaluations = o.evaluations;
   s.target_error = o.target_error;
@@ -117,7 +118,7 @@ nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
   };
   nlohmann::json j{{"data", source(o)}, {"target", target(o)}, {"metric", o.metric},
                    {"evaluations", r.evaluations}, {"generations", r.generations},
-                   {"seconds", r.seconds}, {"stopped_by", r.stopped_by},
+                   {"seconds", r.seconds}, {"stopped_by", fit::to_string(r.stopped_by)},
                    {"choose", o.choose}, {"front", nlohmann::json::array()}};
   for (const auto& c : r.front) j["front"].push_back(entry(c));
   j["chosen"] = entry(r.front[r.chosen]);
@@ -183,7 +184,7 @@ void run(const FitOptions& o) {
   else
     text = front_table(result, options.metric) +
            fmt::format("{} evaluations, {} generations in {:.1f} s (stopped by {}); chosen: {}\n",
-                       result.evaluations, result.generations, result.seconds, result.stopped_by,
+                       result.evaluations, result.generations, result.seconds, fit::to_string(result.stopped_by),
                        o.choose);
   write_output(o.out, text);
 }
@@ -240,6 +241,14 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--choose-factor", o->search.choose_factor,
                   "parsimonious: the smallest formula within this factor of the best error")
       ->capture_default_str()->check(CLI::Range(1.0, 1e6));
+  cmd->add_option("--snap", o->snap,
+                  "on | off: try each front formula's constants as simple numbers (0, integers, p/q with q ≤ 12, "
+                  "multiples of pi, e, ln 2, sqrt 2, sqrt 3), printed so (1 / 3, 3 * pi / 4)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--snap-tolerance", o->search.snap_tolerance,
+                  "How much a snap may raise a formula's error, relative to it, (0, 1]")
+      ->capture_default_str();
   cmd->add_option("--format", o->format, "table | json")->capture_default_str();
   cmd->add_option("--emit", o->emit, "Print only the chosen formula as a function: cpp | glsl | latex | python");
   cmd->add_option("--out", o->out, "Write to FILE (atomically) instead of stdout");

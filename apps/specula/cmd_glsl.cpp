@@ -16,10 +16,10 @@ struct GlslOptions {
 
 std::string function_text(const GlslOptions& o) {
   const Model model = o.model.make();
-  if (o.vertex) return render::scene_vertex_shader(glsl::parse_dialect(o.dialect));
-  if (o.shader)
-    return render::scene_fragment_shader(model, glsl::parse_dialect(o.dialect), render::SceneGeometry::spheres);
-  return queries::glsl_function(model, o.dialect, queries::Spelling::option);
+  const glsl::Dialect dialect = queries::dialect_named(o.dialect);
+  if (o.vertex) return render::scene_vertex_shader(dialect);
+  if (o.shader) return render::scene_fragment_shader(model, dialect, render::SceneGeometry::spheres);
+  return queries::glsl_function(model, dialect);
 }
 
 }  // namespace
@@ -30,7 +30,8 @@ void add_glsl_command(CLI::App& app) {
   o->model.add_to(*cmd);
   o->model.add_coef_to(*cmd);
   cmd->add_option("--dialect", o->dialect, "glsl330 (desktop GLSL 3.30 core), gles300 (GLSL ES 3.00) or webgl2")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of<glsl::Dialect, glsl::kDialectCount>());
   cmd->add_flag("--shader", o->shader,
                 "Print the complete fragment shader of the comparison sphere instead (the one `render --backend gl` "
                 "runs; its uniforms are documented at its top)");

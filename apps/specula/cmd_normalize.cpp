@@ -19,10 +19,12 @@ struct NormalizeOptions {
 };
 
 io::Table normalize_table(const NormalizeOptions& o) {
+  constexpr auto kOption = queries::Spelling::option;
   queries::NormalizeQuery q{o.model.id, o.model.param_values(), o.model.form_override(), {},
-                            o.method, o.compare, o.condition, o.step};
+                            queries::normalize_method_named(o.method, kOption), o.compare,
+                            queries::condition_named(o.condition, kOption), o.step};
   if (!o.n.empty()) q.n = option_values("--n", o.n, kMaxN);
-  return queries::normalize_table(q, queries::Spelling::option);
+  return queries::normalize_table(q, kOption);
 }
 
 }  // namespace
@@ -36,14 +38,14 @@ void add_normalize_command(CLI::App& app) {
   cmd->add_option("--method", o->method,
                   "auto (closed form where known, else quadrature), exact, quadrature, or both "
                   "(adds coef_quadrature and rel_diff)")
-      ->check(CLI::IsMember({"auto", "exact", "quadrature", "both"}));
+      ->check(one_of<queries::NormalizeMethod, queries::kNormalizeMethodCount>());
   cmd->add_option("--compare", o->compare,
                   "Another lobe model: adds its k as coef_compare and delta = k_other·2π·Int − 1 "
                   "(the paper's Fig. 9 with log-paper)");
   cmd->add_option("--condition", o->condition,
                   "normal: albedo 1 at normal incidence (the paper's); strict: max over θ_i of the albedo = 1")
       ->capture_default_str()
-      ->check(CLI::IsMember({"normal", "strict"}));
+      ->check(one_of<queries::Condition, queries::kConditionCount>());
   cmd->add_option("--step", o->step, "With --condition strict: θ_i grid step (degrees) before refinement")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 45.0));

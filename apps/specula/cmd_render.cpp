@@ -76,19 +76,21 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 /// With --env: the uniform white furnace or the probe of the file; none without.
-std::optional<render::Environment> environment_of(const RenderOptions& o) {
+std::optional<render::Environment> environment_of(const RenderOptions& o, render::Backend backend,
+                                                  const render::RenderSettings& settings) {
   if (o.env.empty()) return std::nullopt;
   if (!o.scene.lights.empty()) throw InvalidArgument("--light cannot be combined with --env: the environment is the only light");
-  if (o.backend != "cpu") throw InvalidArgument("--env renders on the cpu backend only");
+  if (backend != render::Backend::cpu) throw InvalidArgument("--env renders on the cpu backend only");
+  render::check_samples(settings, {o.samples, o.seed}, Spelling::option);
   if (o.env == "white") return render::Environment::uniform({1, 1, 1});
   return render::read_environment(o.env);
 }
 
-Rendered render_on_backend(const RenderOptions& o, const render::Scene& scene,
+Rendered render_on_backend(const RenderOptions& o, render::Backend backend, const render::Scene& scene,
                            const std::optional<render::Environment>& environment,
                            const render::RenderSettings& settings) {
   if (environment) return {render::render_environment(scene, *environment, settings, {o.samples, o.seed}), ""};
-  if (o.backend == "cpu") return {render::render_cpu(scene, settings), ""};
+  if (backend == render::Backend::cpu) return {render::render_cpu(scene, settings), ""};
   const gl::Context context;
   gl::Renderer renderer(context);
   return {renderer.render(scene, settings), gl::to_string(context.info())};
@@ -110,12 +112,13 @@ void run_render(const RenderOptions& o) {
   if (format == render::ImageFormat::exr && (display.exposure != 0 || display.tone_map != render::ToneMap::none))
     throw InvalidArgument("--exposure and --tonemap shape 8-bit output; an EXR holds the linear radiance as rendered");
   const render::ExrPixel exr_pixel = parse_exr_pixel(o.exr_pixel);
+  const render::Backend backend = parse_backend(o.backend);
   const render::RenderSettings settings = o.scene.settings();
   const render::Scene scene = scene_of(o);
-  const std::optional<render::Environment> environment = environment_of(o);
+  const std::optional<render::Environment> environment = environment_of(o, backend, settings);
 
   const auto start = std::chrono::steady_clock::now();
-  const Rendered rendered = render_on_backend(o, scene, environment, settings);
+  const Rendered rendered = render_on_backend(o, backend, scene, environment, settings);
   const double render_ms = milliseconds_since(start);
   const auto written = std::chrono::steady_clock::now();
   if (format == render::ImageFormat::png)
@@ -137,11 +140,11 @@ void add_render_command(CLI::App& app) {
   o->model.add_coef_to(*cmd);
   o->scene.add_to(*cmd, Picture::render);
   cmd->add_option("--exr-pixel", o->exr_pixel, "EXR samples: half or float")->capture_default_str()
-      ->check(CLI::IsMember({"half", "float"}));
+      ->check(one_of<render::ExrPixel, render::kExrPixelCount>());
   cmd->add_option("--backend", o->backend,
                   "cpu, or gl: OpenGL 3.3 through EGL (a GPU if EGL lists one, else Mesa's llvmpipe);\n"
                   "the same image within float rounding; at most 16 spheres and 8 lights")->capture_default_str()
-      ->check(CLI::IsMember({"cpu", "gl"}));
+      ->check(one_of<render::Backend, render::kBackendCount>());
   auto* env = cmd->add_option("--env", o->env,
                   "Light the scene by an environment alone (docs/render.md): white (radiance 1 from everywhere:\n"
                   "the white furnace; the material defaults to specular 1, no diffuse, no ambient) or a\n"

@@ -66,15 +66,19 @@ render::Light parse_light(std::string_view spec) {
 }
 
 render::ToneMap parse_tone_map(std::string_view text) {
-  if (text == "none") return render::ToneMap::none;
-  if (text == "aces") return render::ToneMap::aces;
-  throw InvalidArgument(fmt::format("unknown tone map '{}': expected none or aces", text));
+  if (const auto tone_map = enum_named<render::ToneMap, render::kToneMapCount>(text, ToString{})) return *tone_map;
+  throw InvalidArgument(fmt::format("unknown tone map '{}': expected {}", text,
+                                    names_listed<render::ToneMap, render::kToneMapCount>(ToString{})));
 }
 
 render::ExrPixel parse_exr_pixel(std::string_view text) {
-  if (text == "half") return render::ExrPixel::half;
-  if (text == "float") return render::ExrPixel::float32;
-  throw InvalidArgument(fmt::format("unknown EXR pixel type '{}': expected half or float", text));
+  if (const auto pixel = enum_named<render::ExrPixel, render::kExrPixelCount>(text, ToString{})) return *pixel;
+  throw InvalidArgument(fmt::format("unknown EXR pixel type '{}': expected {}", text,
+                                    names_listed<render::ExrPixel, render::kExrPixelCount>(ToString{})));
+}
+
+render::Backend parse_backend(std::string_view text) {
+  return choice_named<render::Backend, render::kBackendCount>("backend", text, Spelling::option);
 }
 
 render::RenderSettings settings_of(std::string_view size) {
@@ -114,7 +118,7 @@ void SceneOptions::add_to(CLI::App& command, Picture picture) {
       ->capture_default_str();
   command.add_option("--tonemap", tone_map, render ? "PNG: none (clamp) or aces (Narkowicz's fit)" : "none (clamp) or aces (Narkowicz's fit)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"none", "aces"}));
+      ->check(one_of<render::ToneMap, render::kToneMapCount>());
 }
 
 render::SceneDescription SceneOptions::description() const {

@@ -28,6 +28,9 @@ render::ToneMap parse_tone_map(std::string_view text);
 /// "half" or "float"; throws InvalidArgument otherwise.
 render::ExrPixel parse_exr_pixel(std::string_view text);
 
+/// "cpu" or "gl"; throws InvalidField "backend" otherwise.
+render::Backend parse_backend(std::string_view text);
+
 /// "WIDTHxHEIGHT"; InvalidArgument naming --size when malformed (the renderer checks the range).
 render::RenderSettings settings_of(std::string_view size);
 

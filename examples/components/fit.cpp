@@ -1,6 +1,7 @@
 // specula::fit: the search for a formula recovers phong-normalized's k(n) = (n + 2)/(2π) from its
 // values, with constants fitted (no image, font, OBJ, GL or HTTP library linked).
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <specula/catalogue/catalogue.h>
@@ -22,6 +23,6 @@ int main() {
   const specula::fit::Candidate& chosen = result.front[result.chosen];
   std::printf("fit: k(n) = %s, size %d, rms error %.1e (stopped by %s)\n",
               specula::expr::to_infix(specula::fit::rounded(chosen.formula, 6)).c_str(), chosen.size,
-              chosen.train_error, result.stopped_by.c_str());
+              chosen.train_error, std::string(specula::fit::to_string(result.stopped_by)).c_str());
   return chosen.train_error <= 1e-9 ? 0 : 1;
 }

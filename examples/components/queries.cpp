@@ -17,7 +17,7 @@ int main() {
   ModelSpec ggx;
   ggx.model = ModelRef{"ggx"};
   ggx.params = {{"alpha", 0.3}};
-  const std::string glsl = glsl_function(make(ggx, Spelling::option), "webgl2", Spelling::option);
+  const std::string glsl = glsl_function(make(ggx, Spelling::option), specula::glsl::Dialect::webgl2);
 
   ModelSpec phong;
   phong.model = ModelRef{"phong-normalized"};

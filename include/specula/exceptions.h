@@ -1,8 +1,10 @@
 #pragma once
 // The one exception type specula throws for bad input (unknown model, parameter out of range,
-// malformed range or expression). The CLI turns it into one line on stderr and exit code 2.
-// Below it, the floor every module stands on for its enums: unreachable() after a switch that
-// lists every enumerator, and the names of an enum from one list (the end of this file).
+// malformed range or expression), and InvalidField, which names the field at fault by its key and
+// spells it in the message as the interface that asked does (Spelling). The CLI turns either into
+// one line on stderr and exit code 2. Below it, the floor every module stands on for its enums:
+// unreachable() after a switch that lists every enumerator, and the names of an enum from one
+// list, which parsing, messages and the interfaces' checks all read (the end of this file).
 #include <array>
 #include <cstddef>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace specula {
 
@@ -31,6 +34,23 @@ class InvalidField : public InvalidArgument {
  private:
   std::string field_;
 };
+
+/// How an interface names a field in its messages: a library that checks a value a user chose
+/// takes the Spelling of the interface that asks, so that its message names the field as the
+/// user wrote it.
+enum class Spelling {
+  option,  ///< the CLI: "theta_i" → "--theta-i", "params" → "--param"
+  key      ///< the server: the JSON key itself
+};
+
+/// `key` as `spelling` spells it.
+inline std::string spelled(std::string_view key, Spelling spelling) {
+  if (spelling == Spelling::key) return std::string(key);
+  if (key == "params") return "--param";
+  std::string option = "--";
+  for (const char ch : key) option += ch == '_' ? '-' : ch;
+  return option;
+}
 
 /// `message` as exactly one line of text: control characters (a newline or tab inside a user's
 /// argument echoed back, an escape sequence) are written as C escapes (\n, \t, \x1b), so that
@@ -111,6 +131,33 @@ std::string names_listed(Name name, std::string_view last = " or ", std::string_
     text += std::string_view(name(static_cast<E>(i)));
   }
   return text;
+}
+
+/// An enum's to_string (found in the enum's namespace) as the `name` of the helpers below: the
+/// default where an enum's to_string is its one list of names.
+struct ToString {
+  template <class E>
+  constexpr auto operator()(E e) const {
+    return to_string(e);
+  }
+};
+
+/// The names in order, as a list of strings: what a CLI option's CLI::IsMember check reads.
+template <class E, std::size_t count, class Name = ToString>
+std::vector<std::string> names_of(Name name = {}) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < count; ++i) names.emplace_back(name(static_cast<E>(i)));
+  return names;
+}
+
+/// The enumerator of E named `text`; else InvalidField `key`, "KEY must be one of a, b, c, got
+/// 'text'" with KEY as `spelling` spells it. Where an interface reads a choice (an option, a
+/// request's field) into its enum, from the same names as names_of.
+template <class E, std::size_t count, class Name = ToString>
+E choice_named(std::string_view key, std::string_view text, Spelling spelling, Name name = {}) {
+  if (const auto value = enum_named<E, count>(text, name)) return *value;
+  throw InvalidField(std::string(key), spelled(key, spelling) + " must be one of " +
+                                           names_listed<E, count>(name, ", ") + ", got '" + std::string(text) + "'");
 }
 
 }  // namespace specula

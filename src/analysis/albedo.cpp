@@ -187,38 +187,6 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
   return {2 * e.value, 2 * e.error, inner_evaluations};
 }
 
-/// A formula BRDF's width: the θ_h where f at normal incidence (L = N, V at 2θ_h) first falls to
-/// half its value at θ_h = 0, to 1e-3 relative (θ_h ∈ [1e-6, π/4]; π/4 if it never does, or if
-/// f(0) ≤ 0: no peak, whose "half" a negative f would fall below at once).
-double formula_brdf_width(const FormulaBrdf& b) {
-  auto f = [&](double theta_h) {
-    const double c = std::cos(theta_h), c2 = std::cos(2 * theta_h);
-    return b.at(1, c2, c, c, c2);
-  };
-  const double half = f(0) / 2;
-  if (!(half > 0)) return kPi / 4;
-  double lo = 1e-6, hi = lo;
-  while (hi < kPi / 4 && !(f(hi) < half)) lo = hi, hi = std::min(hi * 1.5, kPi / 4);
-  if (!(f(hi) < half)) return kPi / 4;
-  while (hi - lo > 1e-3 * hi) {
-    const double mid = (lo + hi) / 2;
-    (f(mid) < half ? hi : lo) = mid;
-  }
-  return hi;
-}
-
-double brdf_width(const FullBrdf& brdf) {
-  return std::visit(
-      [](const auto& b) -> double {
-        using B = std::decay_t<decltype(b)>;
-        if constexpr (std::is_same_v<B, Ward> || std::is_same_v<B, Ggx>) return b.alpha;
-        else if constexpr (std::is_same_v<B, Lambert>) return kPi / 2;
-        else if constexpr (std::is_same_v<B, FormulaBrdf>) return formula_brdf_width(b);
-        else return b.m;
-      },
-      brdf);
-}
-
 /// Cook & Torrance's m (Beckmann's RMS slope), or 0 for another BRDF.
 double beckmann_slope(const FullBrdf& brdf) {
   if (const auto* ct = std::get_if<CookTorrance>(&brdf)) return ct->m;
@@ -249,7 +217,7 @@ void require_incidence_deg(double degrees, const char* what) {
 
 double angular_width(const Model& model) {
   if (const Compensated* compensated = model.compensated()) return angular_width(*compensated->base);
-  if (!model.is_lobe()) return brdf_width(model.brdf());
+  if (!model.is_lobe()) return std::visit([](const auto& b) { return b.width(); }, model.brdf());
   const double u = std::visit([](const auto& l) { return l.half_max_log_cos(); }, model.lobe());
   return std::isfinite(u) ? std::acos(std::exp(-u)) : kPi / 2;
 }

@@ -141,7 +141,7 @@ Albedo table_average(const Model& model, const std::vector<double>& at_nodes, co
 using TableKey = std::tuple<std::string, std::string, std::vector<double>, int, double>;
 
 TableKey key_of(const Model& m) {
-  return {std::string(m.id()), m.info().origin, {m.params().begin(), m.params().end()},
+  return {std::string(m.id()), to_string(m.info().origin), {m.params().begin(), m.params().end()},
           m.is_lobe() ? static_cast<int>(m.form()) : -1, m.is_lobe() ? m.coef() : 0.0};
 }
 

@@ -114,13 +114,14 @@ const std::deque<ModelInfo>& models() { return catalogue().models; }
 
 void register_models(std::vector<ModelInfo> infos) {
   for (std::size_t i = 0; i < infos.size(); ++i) {
+    const std::string origin = to_string(infos[i].origin);
     if (const ModelInfo* taken = find_model(infos[i].id))
-      throw InvalidArgument(fmt::format("{}: model id '{}' is already taken ({})", infos[i].origin,
-                                        infos[i].id, taken->is_builtin() ? "a built-in model" : taken->origin));
+      throw InvalidArgument(fmt::format("{}: model id '{}' is already taken ({})", origin, infos[i].id,
+                                        taken->is_builtin() ? "a built-in model" : to_string(taken->origin)));
     for (std::size_t j = 0; j < i; ++j)
       if (infos[j].id == infos[i].id)
-        throw InvalidArgument(fmt::format("{}: model id '{}' is defined twice (first at {})", infos[i].origin,
-                                          infos[i].id, infos[j].origin));
+        throw InvalidArgument(fmt::format("{}: model id '{}' is defined twice (first at {})", origin, infos[i].id,
+                                          to_string(infos[j].origin)));
   }
   for (auto& info : infos) catalogue().models.push_back(std::move(info));
 }
@@ -155,12 +156,16 @@ std::string model_ids() {
 
 }  // namespace
 
-Model make_model(std::string_view id, const ParamValues& params, std::optional<Form> form) {
-  if (is_inline_model(id)) return make_model(inline_model(id, params), params, form);
+std::shared_ptr<const ModelInfo> model_definition(std::string_view id, const ParamValues& params) {
+  if (is_inline_model(id)) return inline_model(id, params);
   const ModelInfo* info = find_model(id);
-  if (!info) throw InvalidArgument(fmt::format("unknown model '{}' (known: {})", id, model_ids()));
+  if (!info) throw InvalidField("model", fmt::format("unknown model '{}' (known: {})", id, model_ids()));
   // Registry entries live as long as the process: shared without ownership.
-  return make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), info), params, form);
+  return std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), info);
+}
+
+Model make_model(std::string_view id, const ParamValues& params, std::optional<Form> form) {
+  return make_model(model_definition(id, params), params, form);
 }
 
 }  // namespace specula

@@ -237,7 +237,7 @@ ModelInfo read_model(const Reader& r, const toml::table& model) {
   check_id(r, model, info.id);
   info.name = r.text(model, "name", true);
   info.source = r.text(model, "source", false, "user-defined");
-  info.origin = r.origin(model.source());
+  info.origin = {OriginKind::file, r.origin(model.source())};
   const std::string kind = r.text(model, "kind", true);
   info.params = read_params(r, model);
   auto reject = [&](std::string_view key, std::string_view why) {
@@ -331,22 +331,22 @@ std::shared_ptr<const ModelInfo> inline_model(std::string_view spec, const Param
       params.push_back(ParamInfo{name, given, -kMax, kMax, false, "inline parameter"});
     }
   } catch (const expr::ParseError& e) {
-    throw InvalidArgument(fmt::format("--model: column {}: {}", e.column() + 5, e.reason()));
+    throw InvalidField("model", fmt::format("column {}: {}", e.column() + 5, e.reason()));
   }
   auto program = std::make_shared<expr::Program>(std::move(inputs), names_of(params));
   try {
     program->set_result(text);
   } catch (const expr::ParseError& e) {
-    throw InvalidArgument(fmt::format("--model: column {}: {}", e.column() + 5, e.reason()));
+    throw InvalidField("model", fmt::format("column {}: {}", e.column() + 5, e.reason()));
   } catch (const InvalidArgument& e) {
-    throw InvalidArgument(fmt::format("--model: {}", e.what()));
+    throw InvalidField("model", e.what());
   }
   ModelInfo info{};
   info.id = std::string(spec);
   info.name = lobe ? "inline lobe" : "inline BRDF";
   info.summary = std::string(spec);
   info.source = "inline";
-  info.origin = "inline";
+  info.origin = {OriginKind::inline_formula, ""};
   info.params = std::move(params);
   info.coef_formula = "1";
   info.normalization = Normalization::none;

@@ -53,19 +53,6 @@ lobes::Lobe scalar_lobe(Family family, double n) {
   return definition.make_lobe(values);
 }
 
-/// The scalar path in lane type T: the lobe struct per value, inlined (lobes::eval_batch).
-template <class T>
-void scalar_batch(Family family, T n, std::span<const T> c, std::span<T> out) {
-  switch (family) {
-    case Family::power: return lobes::eval_batch(lobes::Power<T>{n}, c, out);
-    case Family::schlick: return lobes::eval_batch(lobes::Schlick<T>{n}, c, out);
-    case Family::schlick_modified: return lobes::eval_batch(lobes::SchlickModified<T>{n}, c, out);
-    case Family::gauss: return lobes::eval_batch(lobes::Gauss<T>{n}, c, out);
-    case Family::log: return lobes::eval_batch(lobes::Log<T>{n}, c, out);
-    case Family::formula: throw InvalidArgument("bench: a formula lobe has no built-in family");
-  }
-}
-
 /// The user lobes of one precision, by model id: each model's Formula at n rounded to T.
 using UserLobes = std::vector<std::pair<std::string, lobes::Lobe>>;
 
@@ -90,10 +77,19 @@ const lobes::Lobe* user_lobe(const Measurement& m, const UserLobes& users) {
   throw InvalidArgument(fmt::format("bench: no user lobe '{}'", m.lobe));
 }
 
-/// A user lobe's scalar path: the Formula per value (expr::Program::evaluate, libm), in double.
+/// The scalar path in lane type T: a built-in family's lobe struct in T per value, inlined
+/// (lobes::eval_batch); a user lobe's Formula per value (expr::Program::evaluate, libm), in double.
 template <class T>
-void scalar_user_batch(const lobes::Lobe& lobe, std::span<const T> c, std::span<T> out) {
-  for (std::size_t i = 0; i < c.size(); ++i) out[i] = T(lobes::eval(lobe, double(c[i])));
+void scalar_batch(const lobes::Lobe& lobe, std::span<const T> c, std::span<T> out) {
+  std::visit(
+      [&](const auto& l) {
+        if constexpr (requires { l.template as<T>(); }) {
+          lobes::eval_batch(l.template as<T>(), c, out);
+        } else {
+          for (std::size_t i = 0; i < c.size(); ++i) out[i] = T(l(double(c[i])));
+        }
+      },
+      lobe);
 }
 
 /// The SIMD tier of a SIMD path (the scalar path has none).
@@ -113,10 +109,11 @@ struct Evaluator {
   Path path;
   double n;
   const lobes::Lobe* user = nullptr;  ///< a user lobe (family == Family::formula)
+  lobes::Lobe scalar;                 ///< the scalar lobe: the user's, or the family's at n in T
 
   simd::LobeSpec spec() const { return user ? simd::spec_of(*user) : simd::LobeSpec{family, double(T(n))}; }
   void operator()(std::span<const T> c, std::span<T> out) const {
-    if (path == Path::scalar) return user ? scalar_user_batch<T>(*user, c, out) : scalar_batch<T>(family, T(n), c, out);
+    if (path == Path::scalar) return scalar_batch<T>(scalar, c, out);
     simd::eval_batch(spec(), tier_of(path), c, out);
   }
 };
@@ -201,7 +198,8 @@ double stream_pass(tbb::task_arena* arena, const Evaluator<T>& eval, std::span<c
 
 template <class T>
 Evaluator<T> evaluator(const Measurement& m, double n, const UserLobes& users) {
-  return {m.family, m.path, n, user_lobe(m, users)};
+  const lobes::Lobe* user = user_lobe(m, users);
+  return {m.family, m.path, n, user, user ? *user : scalar_lobe(m.family, double(T(n)))};
 }
 
 template <class T>
@@ -262,7 +260,7 @@ void measure_accuracy(std::vector<Measurement>& rows, const Settings& s, const U
   for (auto& m : rows) {
     evaluator<T>(m, s.n, users)(c, out);
     const Evaluator<T> eval = evaluator<T>(m, s.n, users);
-    const lobes::Lobe reference = eval.user ? *eval.user : scalar_lobe(m.family, double(T(s.n)));
+    const lobes::Lobe& reference = eval.scalar;
     for (std::size_t i = 0; i < c.size(); ++i) {
       const double f = lobes::eval(reference, double(c[i])), error = std::abs(double(out[i]) - f);
       m.max_abs_error = std::max(m.max_abs_error, error);

@@ -101,6 +101,7 @@ std::string cpp_header(const Model& model) {
   std::vector<std::string> values;
   for (const double v : model.params()) values.push_back(glsl::double_literal(v));
   const std::string ns = cpp_namespace(model);
+  const CppSampler sampler = cpp_sampler(model);
   return fmt::format(
       "// specula export --format cpp: {}\n"
       "// {}: the model in double, as specula's Model computes it, in a header that needs nothing but\n"
@@ -109,14 +110,14 @@ std::string cpp_header(const Model& model) {
       "//   {}::{}(N, L, V{})   at any{}\n"
       "//   {}::sample(wi, u1, u2), {}::pdf(wi, wo)   importance sampling, as specula's sampling::Sampler\n"
       "//     (N = +z, wi toward the light, wo toward the viewer; at these parameters)\n"
-      "#pragma once\n#include <cmath>\n\nnamespace {} {{\n\n{}"
+      "#pragma once\n#include <cmath>\n\nnamespace {} {{\n\n{}{}"
       "// The model at the exported parameters ({}).\n"
       "inline double f(const Vec3& N, const Vec3& L, const Vec3& V) {{ return {}(N, L, V{}); }}\n\n"
       "{}\n}}  // namespace {}\n",
       model_line(model), expr::comment_text(model.info().name), ns, ns, glsl::entry_name(model),
-      joined(glsl_names(model)), held_at_export(model), ns, ns, ns,
+      joined(glsl_names(model)), held_at_export(model), ns, ns, ns, sampler.prelude,
       glsl::model_source(model, glsl::Language::cpp), model_line(model), glsl::entry_name(model), joined(values),
-      cpp_sampler(model), ns);
+      sampler.body, ns);
 }
 
 }  // namespace

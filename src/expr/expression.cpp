@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "specula/expr/expr.h"
 
@@ -66,6 +67,24 @@ std::size_t checked_stack_depth(const std::vector<Node>& nodes, std::size_t vari
 }
 
 }  // namespace
+
+double symbol_value(Symbol symbol) {
+  switch (symbol) {
+    case Symbol::one: return 1;
+    case Symbol::pi: return std::numbers::pi;
+    case Symbol::e: return std::numbers::e;
+    case Symbol::ln2: return std::log(2.0);
+    case Symbol::sqrt2: return std::sqrt(2.0);
+    case Symbol::sqrt3: return std::sqrt(3.0);
+  }
+  unreachable();
+}
+
+Node exact_constant(int numerator, int denominator, Symbol symbol) {
+  const double scaled = symbol == Symbol::one ? double(numerator) : double(numerator) * symbol_value(symbol);
+  return Node{Op::constant, 0, denominator == 1 ? scaled : scaled / double(denominator),
+              static_cast<std::int16_t>(numerator), static_cast<std::uint8_t>(denominator), symbol};
+}
 
 int arity(Op op) {
   switch (op) {

@@ -202,6 +202,10 @@ class Parser {
     if (at_symbol('(') && !function)
       fail(name.column, fmt::format("unknown function '{}'", name.text));
     if (function) return parse_call(name, *function);
+    if (name.text == "pi" && std::find(variables_.begin(), variables_.end(), name.text) == variables_.end()) {
+      nodes_.push_back(exact_constant(1, 1, Symbol::pi));  // π, unless a variable is called pi
+      return;
+    }
     nodes_.push_back(Node{Op::variable, variable_index(name), 0});
   }
 

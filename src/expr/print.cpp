@@ -1,7 +1,10 @@
 // specula::expr printers: infix, C++, GLSL, LaTeX and Python text from postfix nodes. One driver
 // turns the postfix array into fragments; each dialect says how a node combines its operands.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <string>
 
 #include "specula/expr/expr.h"
 
@@ -58,16 +61,87 @@ std::string glsl_float(double magnitude) {
   return mantissa.find('.') == std::string::npos ? mantissa + ".0" + suffix : text;
 }
 
+/// How a dialect writes the parts of an exact constant (Node::numerator · symbol / denominator).
+struct ExactTexts {
+  std::string (*number)(double magnitude);
+  std::array<std::string_view, kSymbolCount> symbols;  ///< by Symbol; Symbol::one unused
+  std::string_view times;                               ///< between the numerator and the symbol
+};
+
+/// p · s / q as the dialect writes it, binding like a product (like a negation or an atom where
+/// there is no operator: "-pi", "pi", "3").
+Fragment exact(const Node& node, const ExactTexts& texts) {
+  const int p = std::abs(int(node.numerator)), q = node.denominator;
+  const std::string_view symbol = texts.symbols[static_cast<std::size_t>(node.symbol)];
+  std::string text;
+  int precedence = kAtom;
+  if (node.symbol == Symbol::one) {
+    text = texts.number(p);
+  } else if (p == 1) {
+    text = symbol;
+  } else {
+    text = texts.number(p) + std::string(texts.times) + std::string(symbol);
+    precedence = kProduct;
+  }
+  if (q > 1) {
+    text += " / " + texts.number(q);
+    precedence = kProduct;
+  }
+  if (node.numerator < 0) {
+    text.insert(0, 1, '-');
+    precedence = std::min(precedence, int(kNegation));
+  }
+  return {std::move(text), precedence};
+}
+
+std::string plain_number(double magnitude) { return shortest(magnitude, false); }
+std::string literal_number(double magnitude) { return shortest(magnitude, true); }
+std::string glsl_number(double magnitude) { return glsl_float(magnitude); }
+
+const ExactTexts kInfixExact{plain_number, {"", "pi", "exp(1)", "log(2)", "sqrt(2)", "sqrt(3)"}, " * "};
+const ExactTexts kCppExact{literal_number,
+                           {"", "std::numbers::pi", "std::numbers::e", "std::numbers::ln2", "std::numbers::sqrt2",
+                            "std::numbers::sqrt3"},
+                           " * "};
+const ExactTexts kPythonExact{literal_number,
+                              {"", "math.pi", "math.e", "math.log(2)", "math.sqrt(2)", "math.sqrt(3)"}, " * "};
+
+/// GLSL has no named constants: the symbols' float values (still written p * s / q).
+Fragment glsl_exact(const Node& node) {
+  static const std::array<std::string, kSymbolCount> values = [] {
+    std::array<std::string, kSymbolCount> out;
+    for (std::size_t i = 1; i < kSymbolCount; ++i) out[i] = glsl_float(symbol_value(static_cast<Symbol>(i)));
+    return out;
+  }();
+  const ExactTexts texts{glsl_number, {"", values[1], values[2], values[3], values[4], values[5]}, " * "};
+  return exact(node, texts);
+}
+
 Fragment negation(const Fragment& operand) {
   std::string text(1, '-');  // not "-" + …: GCC 12 warns falsely (-Wrestrict) on that form
   text += wrapped(operand, operand.precedence <= kNegation);
   return {std::move(text), kNegation};
 }
 
+/// The text of −X without its sign when it is written "-X" (a negative number or a product or
+/// power that leads with one); empty otherwise. a + −X and a − X compute the same in IEEE
+/// arithmetic, sign for sign, so a sum writes "a - X" (and a difference "a + X").
+std::string without_leading_minus(const Fragment& f) {
+  const bool signed_term =
+      f.precedence >= kProduct && f.text.size() > 1 && f.text[0] == '-' && f.text[1] != ' ' && f.text[1] != '-';
+  return signed_term ? f.text.substr(1) : std::string();
+}
+
 // a op b for the left-associative + - * / or the right-associative power operator.
 Fragment infix(Operands operands, std::string_view symbol, int precedence) {
   const Fragment& left = operands[0];
   const Fragment& right = operands[1];
+  if (precedence == kSum) {
+    if (std::string magnitude = without_leading_minus(right); !magnitude.empty()) {
+      const std::string_view flipped = symbol == "+" ? "-" : "+";
+      return {fmt::format("{} {} {}", wrapped(left, left.precedence < kSum), flipped, magnitude), kSum};
+    }
+  }
   const bool power = precedence == kPower;
   const bool wrap_left = power ? left.precedence <= kPower : left.precedence < precedence;
   const bool wrap_right = power ? right.precedence < kNegation : right.precedence <= precedence;
@@ -119,6 +193,7 @@ Fragment infix_negation(const Fragment& operand) {
 }
 
 Fragment infix_node(const Node& node, Operands operands, const Expression& e) {
+  if (is_exact(node)) return exact(node, kInfixExact);
   if (node.op == Op::constant)
     return signed_number(node.value, shortest(std::abs(node.value), false));
   if (node.op == Op::pow) return infix(operands, "^", kPower);
@@ -128,6 +203,7 @@ Fragment infix_node(const Node& node, Operands operands, const Expression& e) {
 }
 
 Fragment cpp_node(const Node& node, Operands operands, const Expression& e) {
+  if (is_exact(node)) return exact(node, kCppExact);
   if (node.op == Op::constant)
     return signed_number(node.value, shortest(std::abs(node.value), true));
   if (auto done = common(node, operands, e)) return *done;
@@ -135,6 +211,7 @@ Fragment cpp_node(const Node& node, Operands operands, const Expression& e) {
 }
 
 Fragment glsl_node(const Node& node, Operands operands, const Expression& e) {
+  if (is_exact(node)) return glsl_exact(node);
   if (node.op == Op::constant) return signed_number(node.value, glsl_float(std::abs(node.value)));
   if (auto done = common(node, operands, e)) return *done;
   // GLSL has neither: the plain forms (float precision hides their cancellation near 0 anyway).
@@ -150,6 +227,7 @@ std::string python_name(Op op) {
 }
 
 Fragment python_node(const Node& node, Operands operands, const Expression& e) {
+  if (is_exact(node)) return exact(node, kPythonExact);
   if (node.op == Op::constant)
     return signed_number(node.value, shortest(std::abs(node.value), true));
   if (node.op == Op::pow) return infix(operands, "**", kPower);
@@ -212,7 +290,19 @@ std::string_view latex_function(Op op) {
   unreachable();
 }
 
+/// \frac{p s}{q}, or p s where q = 1.
+Fragment latex_exact(const Node& node) {
+  static constexpr std::array<std::string_view, kSymbolCount> kSymbols{"", "\\pi", "e", "\\ln 2", "\\sqrt{2}", "\\sqrt{3}"};
+  const int p = std::abs(int(node.numerator)), q = node.denominator;
+  const std::string_view symbol = kSymbols[static_cast<std::size_t>(node.symbol)];
+  std::string top = node.symbol == Symbol::one ? std::to_string(p) : (p == 1 ? "" : std::to_string(p)) + std::string(symbol);
+  std::string text = q > 1 ? fmt::format("\\frac{{{}}}{{{}}}", top, q) : top;
+  if (node.numerator < 0) return {"-" + text, kNegation};
+  return {std::move(text), kAtom};
+}
+
 Fragment latex_node(const Node& node, Operands operands, const Expression& e) {
+  if (is_exact(node)) return latex_exact(node);
   switch (node.op) {
     case Op::constant: return latex_number(node.value);
     case Op::variable: return {e.variables()[node.var], kAtom};

@@ -30,8 +30,12 @@ void evaluate_with_gradient(std::span<const expr::Node> nodes, const Rows& rows,
 std::vector<bool> linear_constants(std::span<const expr::Node> nodes);
 
 /// Fits the constants of g in place, starting from their current values, and returns its
-/// predictions for the rows (non-finite if the formula is undefined somewhere).
-/// Integer mode rounds the fitted constants.
-std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode);
+/// predictions for the rows (non-finite if the formula is undefined somewhere): in weighted least
+/// squares, then, for max_abs and max_rel, for the largest error |f − y| (or |f − y|/|y|) itself:
+/// Lawson's reweighted least squares and Chebyshev exchange steps on the linearized formula
+/// (docs/fit.md). The constants kept are those of the lowest largest error seen; that refinement
+/// replaces rows.weights by its own and does nothing where a max_rel target is 0. The other
+/// metrics are fitted in least squares only. Integer mode rounds the fitted constants.
+std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric = Metric::rms);
 
 }  // namespace specula::fit

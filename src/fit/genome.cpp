@@ -118,8 +118,10 @@ Genome change_node(const Genome& g, const Alphabet& a, Rng& rng) {
   Node& node = out[pick_index(out.size(), rng)];
   const int operands = expr::arity(node.op);
   if (operands == 0) node = a.random_leaf(rng);
-  if (operands == 1) node.op = pick(a.unary, rng);
-  if (operands == 2) node.op = pick(a.binary, rng);
+  // A simplified formula may hold − or negation outside the alphabet (simplified.h): such a node
+  // stays when the alphabet has no operator of its arity to put in its place.
+  if (operands == 1 && !a.unary.empty()) node.op = pick(a.unary, rng);
+  if (operands == 2 && !a.binary.empty()) node.op = pick(a.binary, rng);
   return out;
 }
 

@@ -34,6 +34,7 @@ constexpr std::string_view name_of(Metric metric) noexcept {
     case Metric::rms: return "rms";
     case Metric::mae: return "mae";
     case Metric::max_abs: return "max-abs";
+    case Metric::max_rel: return "max-rel";
     case Metric::mean_relative: return "mean-relative";
     case Metric::r2: return "r2";
   }
@@ -70,6 +71,18 @@ constexpr std::string_view name_of(Choice choice) noexcept {
 }
 static_assert(names_complete<Choice, kChoiceCount>([](Choice c) { return name_of(c); }));
 
+constexpr std::string_view name_of(StopReason reason) noexcept {
+  switch (reason) {
+    case StopReason::time: return "time";
+    case StopReason::generations: return "generations";
+    case StopReason::evaluations: return "evaluations";
+    case StopReason::target_error: return "target error";
+    case StopReason::cancelled: return "cancelled";
+  }
+  return "";
+}
+static_assert(names_complete<StopReason, kStopReasonCount>([](StopReason r) { return name_of(r); }));
+
 /// The value of E named `name`, or InvalidArgument "unknown WHAT 'name' (expected a, b or c)".
 template <class E, std::size_t count>
 E parse_named(std::string_view name, std::string_view what) {
@@ -105,7 +118,16 @@ std::string_view split_name(Split split) { return name_of(split); }
 Choice parse_choice(std::string_view name) { return parse_named<Choice, kChoiceCount>(name, "choice"); }
 std::string_view choice_name(Choice choice) { return name_of(choice); }
 
+std::string_view to_string(StopReason reason) { return name_of(reason); }
+
 double to_loss(Metric metric, double error) { return metric == Metric::r2 ? 1 - error : error; }
+
+namespace {
+
+// |f − y|/|y|; 0 where f = y = 0, inf where only y is 0.
+double relative(double error, double y) { return error == 0 ? 0 : error / std::abs(y); }
+
+}  // namespace
 
 double measure(Metric metric, std::span<const double> predicted, std::span<const double> target) {
   const auto n = static_cast<double>(target.size());
@@ -113,7 +135,7 @@ double measure(Metric metric, std::span<const double> predicted, std::span<const
   for (std::size_t i = 0; i < target.size(); ++i) {
     const double e = std::abs(predicted[i] - target[i]);
     if (!std::isfinite(e)) return INFINITY;
-    largest = std::max(largest, e);
+    largest = std::max(largest, metric == Metric::max_rel ? relative(e, target[i]) : e);
     sum += metric == Metric::mae             ? e
            : metric == Metric::mean_relative ? e / std::abs(target[i])
                                              : e * e;
@@ -122,7 +144,8 @@ double measure(Metric metric, std::span<const double> predicted, std::span<const
     case Metric::rms: return std::sqrt(sum / n);
     case Metric::mae:
     case Metric::mean_relative: return sum / n;
-    case Metric::max_abs: return largest;
+    case Metric::max_abs:
+    case Metric::max_rel: return largest;
     case Metric::r2: {
       const double mean = std::accumulate(target.begin(), target.end(), 0.0) / n;
       double total = 0;
@@ -235,7 +258,7 @@ std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice ch
 expr::Expression rounded(const expr::Expression& e, int digits) {
   std::vector<expr::Node> nodes(e.nodes().begin(), e.nodes().end());
   for (auto& n : nodes)
-    if (n.op == Op::constant) n.value = std::stod(fmt::format("{:.{}g}", n.value, digits));
+    if (n.op == Op::constant && !expr::is_exact(n)) n.value = std::stod(fmt::format("{:.{}g}", n.value, digits));
   return expr::Expression(std::move(nodes), e.variables());
 }
 

@@ -16,6 +16,8 @@
 
 #include "constants.h"
 #include "genome.h"
+#include "simplified.h"
+#include "snap.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
 
@@ -48,11 +50,16 @@ struct Problem {
   SizeWeights weights;
 
   double largest_constant = INFINITY;
+  SimplifyRules rules;
 
   // `key` is canonical_key(formula), which folding constants does not change.
   Individual evaluate(const Genome& formula, std::string key) const {
     Genome g = folded_constants(formula);
-    const auto predicted = fit_constants(g, train, constants);
+    const auto predicted = fit_constants(g, train, constants, metric);
+    if (auto simple = simplified(g, predicted, train, rules)) {  // the same values, fewer nodes
+      g = std::move(*simple);
+      key = canonical_key(g);
+    }
     Individual out{std::move(g), std::move(key), to_loss(metric, measure(metric, predicted, train_target)), 0};
     if (std::isnan(out.loss)) out.loss = INFINITY;
     out.cancels = cancels(out.genome);
@@ -97,22 +104,26 @@ void validate(const Data& data, const Options& o) {
   for (std::size_t r = 0; r < data.target.size(); ++r)
     if (!std::isfinite(data.target[r]))
       throw InvalidArgument(fmt::format("target row {} is not a finite number", r + 1));
-  if (o.metric == Metric::mean_relative)
+  if (o.metric == Metric::mean_relative || o.metric == Metric::max_rel)
     for (std::size_t r = 0; r < data.target.size(); ++r)
       if (data.target[r] == 0)
-        throw InvalidArgument(fmt::format(
-            "the mean-relative error needs a non-zero target, but row {} is 0", r + 1));
+        throw InvalidArgument(fmt::format("the {} error needs a non-zero target, but row {} is 0",
+                                          metric_name(o.metric), r + 1));
   using R = OptionRanges;
-  const auto in_range = [](auto value, auto lo, auto hi, std::string_view what) {
+  const auto in_range = [](auto value, auto lo, auto hi, std::string_view key) {
     if (!(value >= lo && value <= hi))
-      throw InvalidArgument(fmt::format("{} must be in [{}, {}], got {}", what, lo, hi, value));
+      throw InvalidField(std::string(key), fmt::format("{} must be in [{}, {}], got {}", key, lo, hi, value));
   };
-  in_range(o.max_size, 1, R::max_size, "--max-size");
-  in_range(o.enumerate_max_size, 0, R::enumerate_size, "--enumerate-size");
-  in_range(o.enumerate_limit, 0, R::enumerate_limit, "the enumeration limit");
-  in_range(o.islands, 1, R::islands, "--islands");
-  in_range(o.population, 4, R::population, "--population");
-  in_range(o.threads, 0, R::threads, "--threads");
+  in_range(o.max_size, 1, R::max_size, "max_size");
+  in_range(o.enumerate_max_size, 0, R::enumerate_size, "enumerate_size");
+  in_range(o.islands, 1, R::islands, "islands");
+  in_range(o.population, 4, R::population, "population");
+  in_range(o.threads, 0, R::threads, "threads");
+  if (!(o.enumerate_limit >= 0 && o.enumerate_limit <= R::enumerate_limit))
+    throw InvalidArgument(fmt::format("the enumeration limit must be in [0, {}], got {}", R::enumerate_limit,
+                                      o.enumerate_limit));
+  if (!(o.snap_tolerance > 0 && o.snap_tolerance <= R::snap_tolerance))
+    throw InvalidField("snap_tolerance", fmt::format("snap_tolerance must be in (0, 1], got {}", o.snap_tolerance));
   if (data.target.size() > R::rows)
     throw InvalidArgument(fmt::format("{} data rows; at most {}", data.target.size(), R::rows));
   if (o.max_generations.value_or(0) < 0 || o.max_evaluations.value_or(0) < 0)
@@ -139,7 +150,7 @@ std::vector<std::size_t> test_rows(std::size_t rows, const Options& o) {
 }
 
 Problem make_problem(const Data& data, const Options& o) {
-  Problem p{{}, {}, {}, {}, {}, o.metric, o.constants, o.weights, constant_limit(data)};
+  Problem p{{}, {}, {}, {}, {}, o.metric, o.constants, o.weights, constant_limit(data), {}};
   const auto test = test_rows(data.target.size(), o);
   std::vector<bool> held_out(data.target.size(), false);
   for (auto r : test) held_out[r] = true;
@@ -152,7 +163,8 @@ Problem make_problem(const Data& data, const Options& o) {
   }
   for (const auto& c : p.train_columns) p.train.columns.emplace_back(c);
   p.train.target = p.train_target;
-  if (o.metric == Metric::mean_relative)
+  p.rules = {o.operators, o.constants, o.weights};
+  if (o.metric == Metric::mean_relative || o.metric == Metric::max_rel)
     for (double y : p.train_target) p.train.weights.push_back(y != 0 ? 1 / (y * y) : 1.0);
   return p;
 }
@@ -167,6 +179,13 @@ class Archive {
     if (!std::isfinite(x.loss) || x.cancels) return;
     auto [it, inserted] = best_.try_emplace(x.size, x);
     if (!inserted && x.loss < it->second.loss) it->second = x;
+  }
+  // x takes its size's place unless the formula there is more accurate by more than the
+  // tolerance (a snapped form over the unsnapped one it came from, whose error it nearly keeps).
+  void offer_within(const Individual& x, double tolerance, double floor) {
+    if (!std::isfinite(x.loss) || x.cancels) return;
+    const auto it = best_.find(x.size);
+    if (it == best_.end() || x.loss <= it->second.loss * (1 + tolerance) + floor) best_.insert_or_assign(x.size, x);
   }
   // Each size's best that beats every smaller one by more than rounding.
   std::vector<const Individual*> front() const {
@@ -183,7 +202,7 @@ class Archive {
 
 // The loss that double rounding alone can make: 1e-13 of the target's scale.
 double rounding_noise(const Problem& p) {
-  if (p.metric == Metric::mean_relative || p.metric == Metric::r2) return 1e-13;
+  if (p.metric == Metric::mean_relative || p.metric == Metric::max_rel || p.metric == Metric::r2) return 1e-13;
   double mean_square = 0;
   for (double y : p.train_target) mean_square += y * y / static_cast<double>(p.train_target.size());
   return 1e-13 * std::sqrt(mean_square);
@@ -450,13 +469,15 @@ class Search {
   Result run() {
     const auto fitted = enumerate();
     if (!stopped()) check_budget(false);  // e.g. a cancel asked for by the last report
-    if (options_.max_generations == 0) stopped_by_ = "generations";
+    if (options_.max_generations == 0) stopped_by_ = StopReason::generations;
     if (!stopped()) evolve(fitted);
     Result result;
-    for (const Individual* x : archive_.front()) result.front.push_back(candidate(*x, problem_, data_));
+    const std::vector<Individual> front = options_.snap ? snapped_front() : copied(archive_.front());
+    for (const Individual& x : front) result.front.push_back(candidate(x, problem_, data_));
     if (result.front.empty())
-      throw InvalidArgument(stopped_by_ == "cancelled" || stopped_by_ == "time"
-                                ? fmt::format("the search stopped ({}) before any formula was evaluated", stopped_by_)
+      throw InvalidArgument(stopped_by_ == StopReason::cancelled || stopped_by_ == StopReason::time
+                                ? fmt::format("the search stopped ({}) before any formula was evaluated",
+                                              to_string(*stopped_by_))
                                 : std::string("no formula could be evaluated on these data"));
     double mean_square = 0;
     for (double y : data_.target) mean_square += y * y / static_cast<double>(data_.target.size());
@@ -465,11 +486,45 @@ class Search {
     result.evaluations = evaluations_;
     result.generations = generations_;
     result.seconds = budget_.seconds();
-    result.stopped_by = stopped_by_;
+    result.stopped_by = *stopped_by_;
     return result;
   }
 
  private:
+  static std::vector<Individual> copied(const std::vector<const Individual*>& xs) {
+    std::vector<Individual> out;
+    for (const Individual* x : xs) out.push_back(*x);
+    return out;
+  }
+
+  // The front with each formula's constants snapped (snap.h) and simplified again: an exact
+  // constant of 0 drops its term. Snapping moves errors a little, so the front is taken anew.
+  std::vector<Individual> snapped_front() {
+    SnapSettings settings;
+    settings.metric = options_.metric;
+    settings.constants = options_.constants;
+    settings.tolerance = options_.snap_tolerance;
+    settings.floor = std::max(rounding_noise(problem_),
+                              options_.target_error ? to_loss(options_.metric, *options_.target_error) : 0.0);
+    settings.stop = [this] { return stop_requested() != 0 || budget_.cancelled(); };
+    settings.acceptable = [this](const Genome& g) { return !problem_.cancels(g); };
+    // Each refit fits every training row: a few hundred per formula for small data, fewer for large.
+    settings.max_refits = static_cast<int>(std::clamp<std::size_t>(20'000'000 / (problem_.train.size() + 1), 20, 500));
+    const std::vector<const Individual*> unsnapped = archive_.front();
+    Archive snapped_archive(rounding_noise(problem_));
+    for (const Individual* x : unsnapped) snapped_archive.offer(*x);
+    for (const Individual* x : unsnapped) {
+      Snapped s = snapped(x->genome, problem_.train, settings);
+      std::vector<double> values(problem_.train.size());
+      expr::evaluate_batch(expr::Expression(s.genome, data_.variables), problem_.train.columns, values);
+      if (auto simple = simplified(s.genome, values, problem_.train, problem_.rules)) s.genome = std::move(*simple);
+      Individual y{s.genome, canonical_key(s.genome), s.loss, problem_.weights.of(s.genome)};
+      y.cancels = problem_.cancels(y.genome);
+      snapped_archive.offer_within(y, options_.snap_tolerance, settings.floor);
+    }
+    return copied(snapped_archive.front());
+  }
+
   std::vector<Individual> enumerate() {
     const auto forms = enumerate_forms(alphabet_, options_);
     std::vector<Individual> fitted(forms.size());
@@ -550,19 +605,19 @@ class Search {
     if (const int signal = stop_requested()) throw Interrupted(Interrupted::Reason::signal, signal);
     const auto front = archive_.front();
     if (budget_.cancelled())
-      stopped_by_ = "cancelled";
+      stopped_by_ = StopReason::cancelled;
     else if (options_.target_error && !front.empty() &&
         front.back()->loss <= to_loss(options_.metric, *options_.target_error))
-      stopped_by_ = "target error";
+      stopped_by_ = StopReason::target_error;
     else if (options_.max_evaluations && evaluations_ >= *options_.max_evaluations)
-      stopped_by_ = "evaluations";
+      stopped_by_ = StopReason::evaluations;
     else if (options_.max_generations && generations_ >= *options_.max_generations && evolving)
-      stopped_by_ = "generations";
+      stopped_by_ = StopReason::generations;
     else if (budget_.out_of_time())
-      stopped_by_ = "time";
+      stopped_by_ = StopReason::time;
   }
 
-  bool stopped() const { return !stopped_by_.empty(); }
+  bool stopped() const { return stopped_by_.has_value(); }
 
   void report() {
     if (!progress_) return;
@@ -582,7 +637,7 @@ class Search {
   Budget budget_;
   Archive archive_;
   std::int64_t evaluations_ = 0, generations_ = 0;
-  std::string stopped_by_;
+  std::optional<StopReason> stopped_by_;
 };
 
 }  // namespace

@@ -126,7 +126,7 @@ std::string add_formula_lobe(ShaderSource& src, const Target& target, const Mode
   const std::string name = entry_name(model) + "_lobe";
   src.add(name, fmt::format("// {}: the lobe F of a user-defined model ({}). Source: {}.\n"
                             "float {}(float c{}) {{\n  if (c <= 0.0) return 0.0;\n  c = min(c, 1.0);\n{}{}}}",
-                            expr::comment_text(model.info().name), expr::comment_text(model.info().origin),
+                            expr::comment_text(model.info().name), expr::comment_text(to_string(model.info().origin)),
                             expr::comment_text(model.info().source), name,
                             parameter_list(model.info()), program.reads(1) ? "  float u = -log(c);\n" : "",
                             program_lines(program, target.printer())));
@@ -151,23 +151,15 @@ void add_formula_brdf(ShaderSource& src, const Target& target, const Model& mode
           fmt::format("// {}: a user-defined BRDF ({}), f = {}. Source: {}.\n"
                       "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
                       "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n{}{}}}",
-                      expr::comment_text(model.info().name), expr::comment_text(model.info().origin),
+                      expr::comment_text(model.info().name), expr::comment_text(to_string(model.info().origin)),
                       expr::comment_text(model.info().summary), expr::comment_text(model.info().source),
                       entry_name(model), parameter_list(model.info()), brdf_inputs(program),
                       program_lines(program, target.printer())));
 }
 
-/// Whether the lobe model's k is not its own (Model::with_coef).
-bool coef_overridden(const Model& model) {
-  ParamValues values;
-  for (std::size_t i = 0; i < model.params().size(); ++i)
-    values[std::string(model.info().params[i].name)] = model.params()[i];
-  return model.coef() != make_model(model.shared_info(), values, model.form()).coef();
-}
-
 /// k as the model defines it, or the literal of an override (Model::with_coef).
 std::string coefficient_expression(ShaderSource& src, const Target& target, const Model& model) {
-  if (coef_overridden(model)) return target.literal(model.coef());
+  if (model.coef_overridden()) return target.literal(model.coef());
   if (std::holds_alternative<lobes::Formula>(model.lobe())) {
     if (model.info().coef_program) return coefficient_formula(*model.info().coef_program, target.printer());
     return model.info().normalization == Normalization::none ? "" : target.literal(model.coef());  // quadrature: baked
@@ -195,7 +187,7 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
                       expr::comment_text(model.info().name), expr::comment_text(model.info().summary),
                       to_string(model.form()), expr::comment_text(model.info().source),
                       expr::comment_text(model.info().is_builtin() ? fmt::format("docs/math.md 2 `{}`", model.id())
-                                                                   : model.info().origin),
+                                                                   : to_string(model.info().origin)),
                       entry_name(model), parameter_list(model.info()),
                       target.in_double() ? "  if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return 0.0;\n" : "",
                       k.empty() ? lobe_value : k + " * " + lobe_value));
@@ -342,7 +334,7 @@ std::string param_name(const ModelInfo& info, const ParamInfo& p) {
 
 bool coef_is_baked(const Model& model) {
   if (!model.is_lobe()) return false;
-  if (coef_overridden(model)) return true;
+  if (model.coef_overridden()) return true;
   const bool quadrature_k = std::holds_alternative<lobes::Formula>(model.lobe()) && !model.info().coef_program &&
                             model.info().normalization != Normalization::none;
   return quadrature_k;

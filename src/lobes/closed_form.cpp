@@ -1,7 +1,9 @@
 #include "specula/lobes/closed_form.h"
 
-#include <boost/math/special_functions/expint.hpp>
 #include <cmath>
+#include <numbers>
+
+#include "specula/lobes/portable/radial.h"
 
 namespace specula::lobes {
 namespace {
@@ -13,21 +15,6 @@ constexpr double kLn2 = std::numbers::ln2;
 double schlick_rv_integral_series(double m) noexcept {
   double sum = 0, power = 1;
   for (int j = 0; j < 64; ++j, power *= m) sum += power * 2.0 / ((j + 1.0) * (j + 2.0) * (j + 3.0));
-  return sum;
-}
-
-// Boost's default promotes double to long double: 7× slower, and no more accurate here.
-using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-
-/// e^x E₁(x) for x > 0, without overflow: asymptotic series beyond x = 50, where its smallest
-/// term is below e^(−50).
-double scaled_e1(double x) noexcept {
-  if (x <= 50) return std::exp(x) * boost::math::expint(1, x, DoublePolicy());
-  double term = 1 / x, sum = 0;
-  for (int k = 1; std::abs(term) > 1e-18 * std::abs(sum) || k == 1; ++k) {
-    sum += term;
-    term *= -k / x;
-  }
   return sum;
 }
 
@@ -67,7 +54,7 @@ double schlick_rv(double n) noexcept {
 double log_rv(double n) noexcept {
   const double a = 2 * kLn2 / n;
   if (a <= 1) return 1 / (kPi * a * log_lobe_t_integral_series(a));
-  const double integral = 0.5 - (scaled_e1(a) - std::exp(-3 * a) * scaled_e1(4 * a)) / (4 * kLn2);
+  const double integral = 0.5 - (radial::scaled_e1(a) - std::exp(-3 * a) * radial::scaled_e1(4 * a)) / (4 * kLn2);
   return 1 / (2 * kPi * integral);
 }
 

@@ -22,16 +22,37 @@ std::string ParamInfo::range_text() const {
   return fmt::format("{}{:g}, {:g}]", min_exclusive ? '(' : '[', min, max);
 }
 
-const char* to_string(ModelKind kind) noexcept { return kind == ModelKind::lobe ? "lobe" : "brdf"; }
+namespace {
 
-const char* to_string(Normalization normalization) noexcept {
+// The kinds' and normalizations' names, the one list to_string reads ("" outside the enum).
+constexpr const char* name_of(ModelKind kind) noexcept {
+  switch (kind) {
+    case ModelKind::lobe: return "lobe";
+    case ModelKind::brdf: return "brdf";
+  }
+  return "";
+}
+static_assert(names_complete<ModelKind, kModelKindCount>([](ModelKind k) { return name_of(k); }));
+
+constexpr const char* name_of(Normalization normalization) noexcept {
   switch (normalization) {
     case Normalization::none: return "none";
     case Normalization::exact: return "exact";
     case Normalization::formula: return "formula";
     case Normalization::quadrature: return "quadrature";
   }
-  return "none";
+  return "";
+}
+static_assert(names_complete<Normalization, kNormalizationCount>([](Normalization n) { return name_of(n); }));
+
+}  // namespace
+
+const char* to_string(ModelKind kind) noexcept { return name_of(kind); }
+
+const char* to_string(Normalization normalization) noexcept { return name_of(normalization); }
+
+std::string to_string(const ModelOrigin& origin) {
+  return origin.kind == OriginKind::file ? origin.file_line : to_string(origin.kind);
 }
 
 const ParamInfo* ModelInfo::find_param(std::string_view name) const noexcept {
@@ -56,6 +77,22 @@ Model Model::with_coef(double k) const {
   return copy;
 }
 
+namespace {
+
+/// The definition's implementation at `values`; a definition that cannot be made there names the
+/// parameters when some were given, else the model.
+ModelImpl implementation(const ModelInfo& def, std::span<const double> values, const ParamValues& given) {
+  try {
+    return def.make(values);
+  } catch (const InvalidField&) {
+    throw;
+  } catch (const InvalidArgument& e) {
+    throw InvalidField(given.empty() ? "model" : "params", e.what());
+  }
+}
+
+}  // namespace
+
 Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& params, std::optional<Form> form) {
   Model model;
   model.info_ = std::move(info);
@@ -65,27 +102,26 @@ Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& param
   for (const auto& [name, value] : params) {
     const ParamInfo* p = def.find_param(name);
     if (!p)
-      throw InvalidArgument(fmt::format("model '{}' has no parameter '{}' (its parameters: {})", id,
-                                        name, param_names(def)));
+      throw InvalidParameter(name, fmt::format("model '{}' has no parameter '{}' (its parameters: {})", id, name,
+                                               param_names(def)));
     if (std::isnan(value) || !p->accepts(value))
-      throw InvalidArgument(fmt::format("parameter {} = {} is out of range for model '{}': valid {}",
-                                        name, value, id, p->range_text()));
+      throw InvalidParameter(name, fmt::format("parameter {} = {} is out of range for model '{}': valid {}", name,
+                                               value, id, p->range_text()));
     model.values_[static_cast<std::size_t>(p - def.params.data())] = value;
   }
-  model.impl_ = def.make(model.values_);
-  if (form) {
-    auto* lobe_model = std::get_if<LobeModel>(&model.impl_);
-    if (!lobe_model)
-      throw InvalidArgument(fmt::format("model '{}' is a full BRDF and has no form", id));
-    lobe_model->form = *form;
+  model.impl_ = implementation(def, model.values_, params);
+  if (auto* lobe_model = std::get_if<LobeModel>(&model.impl_)) {
+    model.own_coef_ = lobe_model->k;
+    if (form) lobe_model->form = *form;
+  } else if (form) {
+    throw InvalidField("form", fmt::format("model '{}' is a full BRDF and has no form", id));
   }
   return model;
 }
 
 Form parse_form(std::string_view text) {
-  if (text == "rv") return Form::rv;
-  if (text == "nh") return Form::nh;
-  throw InvalidArgument(fmt::format("unknown form '{}' (expected rv or nh)", text));
+  if (const auto form = form_named(text)) return *form;
+  throw InvalidArgument(fmt::format("unknown form '{}' (expected {})", text, names_listed<Form, kFormCount>(ToString{})));
 }
 
 }  // namespace specula

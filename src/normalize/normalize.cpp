@@ -15,7 +15,7 @@ double coefficient(const lobes::Lobe& lobe, Form form, Method method) {
   if (method == Method::exact)
     throw InvalidArgument(std::string("no closed-form normalization is known for the ") +
                           std::string(families::family_name(lobe)) + " lobe in " + to_string(form) +
-                          " form; use --method quadrature");
+                          " form");
   return quadrature(lobe, form);
 }
 

@@ -11,6 +11,7 @@
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/catalogue/catalogue.h"
+#include "specula/catalogue/model_file.h"
 #include "specula/catalogue/model_meta.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
@@ -40,22 +41,19 @@ auto for_field(std::string_view key, Work&& work) {
   }
 }
 
-void require_member(std::string_view key, const std::string& value,
-                    std::initializer_list<std::string_view> allowed, Spelling spelling) {
-  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
-    fail(key, fmt::format("{} must be one of {}, got '{}'", spelled(key, spelling),
-                          fmt::join(allowed, ", "), value));
-}
-
 void require_degrees(std::string_view key, double degrees, double low, double high, Spelling spelling) {
   if (!(degrees >= low && degrees <= high))  // NaN too
     fail(key, fmt::format("{} {} is outside [{}, {}] degrees", spelled(key, spelling), degrees, low, high));
 }
 
-normalize::Method method_of(const std::string& method) {
-  if (method == "exact" || method == "both") return normalize::Method::exact;
-  if (method == "quadrature") return normalize::Method::quadrature;
-  return normalize::Method::automatic;
+normalize::Method method_of(NormalizeMethod method) {
+  switch (method) {
+    case NormalizeMethod::automatic: return normalize::Method::automatic;
+    case NormalizeMethod::exact:
+    case NormalizeMethod::both: return normalize::Method::exact;
+    case NormalizeMethod::quadrature: return normalize::Method::quadrature;
+  }
+  unreachable();
 }
 
 void require_no_n(const ParamValues& params, Spelling spelling) {
@@ -63,11 +61,31 @@ void require_no_n(const ParamValues& params, Spelling spelling) {
     fail("params", fmt::format("give n with {}, not {}", spelled("n", spelling), spelled("params", spelling)));
 }
 
-/// The default n of a lobe model (InvalidField "model" for a full BRDF).
-double default_n(const ModelRef& ref) {
-  const Model m = for_field("model", [&] { return ref.make(); });
-  if (!m.is_lobe()) fail("model", fmt::format("normalize works on lobe models; '{}' is a full BRDF", ref.name()));
-  return m.param("n");
+/// Runs `work`, which makes `ref`'s definition or model: its InvalidField "model" becomes
+/// `field`'s, and an inline definition's (a column of the formula) says which field it quotes.
+template <class Work>
+auto as_field(std::string_view field, const ModelRef& ref, Spelling spelling, Work&& work) {
+  try {
+    return work();
+  } catch (const InvalidField& e) {
+    if (e.field() != "model") throw;
+    fail(field, ref.is_inline() ? fmt::format("{}: {}", spelled(field, spelling), e.what()) : std::string(e.what()));
+  }
+}
+
+/// InvalidField `field` unless the definition is a lobe model's (`command` needs one).
+void require_lobe(std::string_view field, std::string_view command, const ModelRef& ref, const ModelInfo& definition) {
+  if (definition.kind != ModelKind::lobe)
+    fail(field, fmt::format("{} works on lobe models; '{}' is a full BRDF", command, ref.name()));
+}
+
+/// The default n of a lobe model (InvalidField "model" for a full BRDF or a lobe without n).
+double default_n(const ModelRef& ref, Spelling spelling) {
+  const auto definition = as_field("model", ref, spelling, [&] { return ref.definition(); });
+  require_lobe("model", "normalize", ref, *definition);
+  const ParamInfo* n = definition->find_param("n");
+  if (!n) fail("model", fmt::format("model '{}' has no parameter 'n'", ref.name()));
+  return n->default_value;
 }
 
 void check_options(const analysis::CheckOptions& o, Spelling spelling) {
@@ -80,26 +98,45 @@ void check_options(const analysis::CheckOptions& o, Spelling spelling) {
     for_field("grazing", [&] { analysis::require_incidence_deg(g, spelled("grazing", spelling).c_str()); });
 }
 
+/// k by `method`; asked for a closed form that the lobe lacks, says how to ask for quadrature.
+double coefficient(const Model& m, NormalizeMethod method, Spelling spelling) {
+  const normalize::Method how = method_of(method);
+  try {
+    return normalize::coefficient(m.lobe(), m.form(), how);
+  } catch (const InvalidArgument& e) {
+    if (how != normalize::Method::exact) fail("method", e.what());
+    fail("method", fmt::format("{}; use {} quadrature", e.what(), spelled("method", spelling)));
+  }
+}
+
 }  // namespace
 
-std::string spelled(std::string_view key, Spelling spelling) {
-  if (spelling == Spelling::key) return std::string(key);
-  if (key == "params") return "--param";
-  std::string option = "--";
-  for (const char ch : key) option += ch == '_' ? '-' : ch;
-  return option;
+bool ModelRef::is_inline() const noexcept { return !definition_ && is_inline_model(id_); }
+
+std::shared_ptr<const ModelInfo> ModelRef::definition(const ParamValues& params) const {
+  return definition_ ? definition_ : model_definition(id_, params);
 }
 
 Model ModelRef::make(const ParamValues& params, std::optional<Form> form) const {
-  return definition_ ? make_model(definition_, params, form) : make_model(id_, params, form);
+  return make_model(definition(params), params, form);
 }
 
-Model make(const ModelSpec& spec, Spelling) {
-  for_field("model", [&] { return spec.model.make(); });
-  Model m = for_field("params", [&] { return spec.model.make(spec.params); });
-  if (spec.form) m = for_field("form", [&] { return spec.model.make(spec.params, spec.form); });
+Model make(const ModelSpec& spec, Spelling spelling) {
+  Model m = as_field("model", spec.model, spelling, [&] { return spec.model.make(spec.params, spec.form); });
   if (spec.coef) m = for_field("coef", [&] { return m.with_coef(*spec.coef); });
   return m;
+}
+
+NormalizeMethod normalize_method_named(std::string_view text, Spelling spelling) {
+  return choice_named<NormalizeMethod, kNormalizeMethodCount>("method", text, spelling);
+}
+
+Condition condition_named(std::string_view text, Spelling spelling) {
+  return choice_named<Condition, kConditionCount>("condition", text, spelling);
+}
+
+AlbedoMethod albedo_method_named(std::string_view text, Spelling spelling) {
+  return choice_named<AlbedoMethod, kAlbedoMethodCount>("method", text, spelling);
 }
 
 Form form_named(std::string_view text, Spelling) {
@@ -108,11 +145,18 @@ Form form_named(std::string_view text, Spelling) {
 
 Model lobe_model_at(std::string_view field, std::string_view command, const ModelRef& ref,
                     ParamValues params, double n, std::optional<Form> form, Spelling spelling) {
-  if (!for_field(field, [&] { return ref.make(); }).is_lobe())
-    fail(field, fmt::format("{} works on lobe models; '{}' is a full BRDF", command, ref.name()));
-  make(ModelSpec{ref, params, form, std::nullopt}, spelling);
   params["n"] = n;
-  return for_field("n", [&] { return ref.make(params, form); });
+  const auto definition = as_field(field, ref, spelling, [&] { return ref.definition(params); });
+  require_lobe(field, command, ref, *definition);
+  try {
+    return make_model(definition, params, form);
+  } catch (const InvalidParameter& e) {
+    if (e.param() != "n") throw;
+    fail("n", e.what());
+  } catch (const InvalidField& e) {  // not made at these values: at this n, when n is all that is given
+    if (e.field() != "params" || params.size() > 1) throw;
+    fail("n", e.what());
+  }
 }
 
 io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool bare_lobe,
@@ -149,27 +193,27 @@ io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const
 
 io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
   require_no_n(q.params, spelling);
-  require_member("method", q.method, {"auto", "exact", "quadrature", "both"}, spelling);
-  require_member("condition", q.condition, {"normal", "strict"}, spelling);
   if (!(q.step >= 0.01 && q.step <= 45))
     fail("step", fmt::format("{} {} is outside [0.01, 45] degrees", spelled("step", spelling), q.step));
-  const bool both = q.method == "both";
-  const bool strict = q.condition == "strict";
-  if (strict && (q.method == "exact" || both))
+  const bool both = q.method == NormalizeMethod::both;
+  const bool strict = q.condition == Condition::strict;
+  if (strict && (q.method == NormalizeMethod::exact || both))
     fail("method", fmt::format("the strict condition has no closed form: drop {} or use quadrature",
                                spelled("method", spelling)));
-  const normalize::Method method = method_of(q.method);
-  const std::vector<double> ns = q.n.empty() ? std::vector<double>{default_n(q.model)} : q.n;
+  const std::vector<double> ns = q.n.empty() ? std::vector<double>{default_n(q.model, spelling)} : q.n;
 
-  io::Table table{{"n", "coef"}, {}, {{"model", std::string(q.model.name())}, {"method", q.method}, {"condition", q.condition}}};
+  io::Table table{{"n", "coef"},
+                  {},
+                  {{"model", std::string(q.model.name())},
+                   {"method", to_string(q.method)},
+                   {"condition", to_string(q.condition)}}};
   if (both) table.columns.insert(table.columns.end(), {"coef_quadrature", "rel_diff"});
   if (!q.compare.empty()) table.columns.insert(table.columns.end(), {"coef_compare", "delta"});
   for (const double n : ns) {
     check_interrupt();
     const Model m = lobe_model_at("model", "normalize", q.model, q.params, n, q.form, spelling);
     if (table.meta.size() == 3) table.meta.emplace_back("form", to_string(m.form()));
-    const double coef = strict ? analysis::strict_coefficient(m, q.step)
-                               : for_field("method", [&] { return normalize::coefficient(m.lobe(), m.form(), method); });
+    const double coef = strict ? analysis::strict_coefficient(m, q.step) : coefficient(m, q.method, spelling);
     std::vector<double> row{n, coef};
     if (both) {
       const double quadrature = normalize::quadrature(m.lobe(), m.form());
@@ -189,12 +233,11 @@ io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
 io::Table albedo_table(const Model& m, const AlbedoQuery& q, Spelling spelling) {
   for (const double d : q.theta_deg)
     for_field("theta", [&] { analysis::require_incidence_deg(d, spelled("theta", spelling).c_str()); });
-  require_member("method", q.method, {"cubature", "monte-carlo"}, spelling);
   if (q.samples < 1 || q.samples > 1'000'000'000)
     fail("samples", fmt::format("{} {} is outside [1, 1000000000]", spelled("samples", spelling), q.samples));
-  const bool monte_carlo = q.method == "monte-carlo";
+  const bool monte_carlo = q.method == AlbedoMethod::monte_carlo;
   io::Table table{{"theta_deg", "albedo"}, {}, model_meta(m)};
-  table.meta.emplace_back("method", q.method);
+  table.meta.emplace_back("method", to_string(q.method));
   if (monte_carlo) table.columns.push_back("standard_error");
   const auto rows = analysis::parallel_map(std::span<const double>(q.theta_deg), [&](double deg) {
     if (!monte_carlo) return std::vector<double>{deg, analysis::albedo(m, radians(deg)).value};
@@ -212,14 +255,19 @@ io::Table error_table(const ErrorQuery& q, Spelling spelling) {
   auto lobe_of = [&](std::string_view field, const ModelRef& ref, const ParamValues& params, double n) {
     return lobe_model_at(field, "error", ref, params, n, std::nullopt, spelling).lobe();
   };
-  for (const double n : q.n) lobe_of("model", q.model, q.params, n), lobe_of("reference", q.reference, {}, n);
+  struct Pair {
+    double n;
+    lobes::Lobe model, reference;
+  };
+  std::vector<Pair> pairs;  // made here, where a bad one is an error before any work
+  for (const double n : q.n)
+    pairs.push_back({n, lobe_of("model", q.model, q.params, n), lobe_of("reference", q.reference, {}, n)});
   io::Table table{{"n", "max_abs", "argmax_abs_deg", "max_rel_epicenter", "max_rel_attenuation"},
                   {},
                   {{"model", std::string(q.model.name())}, {"reference", std::string(q.reference.name())}, {"zone", io::format_number(q.zone)}}};
-  const auto rows = analysis::parallel_map(std::span<const double>(q.n), [&](double n) {
-    const auto e = analysis::approximation_error(lobe_of("model", q.model, q.params, n),
-                                                 lobe_of("reference", q.reference, {}, n), q.zone);
-    return std::vector<double>{n, e.max_abs, e.argmax_abs_deg, e.max_rel_epicenter, e.max_rel_attenuation};
+  const auto rows = analysis::parallel_map(std::span<const Pair>(pairs), [&](const Pair& p) {
+    const auto e = analysis::approximation_error(p.model, p.reference, q.zone);
+    return std::vector<double>{p.n, e.max_abs, e.argmax_abs_deg, e.max_rel_epicenter, e.max_rel_attenuation};
   });
   table.rows.assign(rows.begin(), rows.end());
   return table;
@@ -231,9 +279,10 @@ std::vector<CheckCase> check_cases(const CheckQuery& q, Spelling spelling) {
     Model m = make(q.model, spelling);
     return {{m, analysis::check(m, q.options)}};
   }
-  const Model defaults = make(q.model, spelling);
-  if (!defaults.info().find_param(q.sweep))
-    fail("sweep", fmt::format("model '{}' has no parameter '{}' to sweep", q.model.model.name(), q.sweep));
+  const ModelRef& ref = q.model.model;
+  const auto definition = as_field("model", ref, spelling, [&] { return ref.definition(q.model.params); });
+  if (!definition->find_param(q.sweep))
+    fail("sweep", fmt::format("model '{}' has no parameter '{}' to sweep", ref.name(), q.sweep));
   if (q.model.params.contains(q.sweep))
     fail("sweep", fmt::format("{} is swept; do not also give it with {}", q.sweep, spelled("params", spelling)));
   std::vector<CheckCase> cases;
@@ -241,7 +290,7 @@ std::vector<CheckCase> check_cases(const CheckQuery& q, Spelling spelling) {
     check_interrupt();
     ModelSpec at = q.model;
     at.params[q.sweep] = v;
-    const Model m = for_field("sweep", [&] { return make(at, spelling); });
+    const Model m = make(at, spelling);
     cases.push_back({m, analysis::check(m, q.options)});
   }
   return cases;
@@ -280,8 +329,11 @@ fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, s
   return data;
 }
 
-std::string glsl_function(const Model& model, std::string_view dialect_name, Spelling) {
-  const glsl::Dialect dialect = for_field("dialect", [&] { return glsl::parse_dialect(dialect_name); });
+glsl::Dialect dialect_named(std::string_view text) {
+  return for_field("dialect", [&] { return glsl::parse_dialect(text); });
+}
+
+std::string glsl_function(const Model& model, glsl::Dialect dialect) {
   std::string params;
   for (const auto& [name, value] : model_meta(model)) params += fmt::format(" {}={}", name, value);
   params = expr::comment_text(params);
@@ -311,7 +363,7 @@ std::string models_json() {
                         {"meaning", p.meaning}});
     nlohmann::ordered_json entry = {{"id", m.id},         {"name", m.name},
                                     {"kind", to_string(m.kind)}, {"summary", m.summary},
-                                    {"source", m.source}, {"origin", m.origin},
+                                    {"source", m.source}, {"origin", to_string(m.origin)},
                                     {"params", params}};
     if (m.kind == ModelKind::lobe) {
       entry["form"] = to_string(m.form);

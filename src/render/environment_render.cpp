@@ -86,18 +86,23 @@ void check_settings(const Scene& scene, const RenderSettings& size, const Enviro
   validate(scene);
   if (!scene.lights.empty())
     throw InvalidArgument("an environment-lit scene has no other lights: the environment is the only light");
-  if (settings.samples < 1 || settings.samples > kMaxEnvironmentSamples)
-    throw InvalidArgument(
-        fmt::format("--samples {} is outside [1, {}]", settings.samples, kMaxEnvironmentSamples));
-  const auto pixels = std::uint64_t(std::max(0, size.width)) * std::uint64_t(std::max(0, size.height));
-  const std::uint64_t total = pixels * std::uint64_t(settings.samples);
-  if (total > kMaxEnvironmentImageSamples)
-    throw InvalidArgument(fmt::format("{}x{} pixels with --samples {} is {} samples, more than the 2^{} an image may take",
-                                      size.width, size.height, settings.samples, total,
-                                      kMaxEnvironmentImageSamplesLog2));
+  check_samples(size, settings, Spelling::key);
 }
 
 }  // namespace
+
+void check_samples(const RenderSettings& size, const EnvironmentSettings& settings, Spelling spelling) {
+  const std::string samples = spelled("samples", spelling);
+  if (settings.samples < 1 || settings.samples > kMaxEnvironmentSamples)
+    throw InvalidField("samples",
+                       fmt::format("{} {} is outside [1, {}]", samples, settings.samples, kMaxEnvironmentSamples));
+  const auto pixels = std::uint64_t(std::max(0, size.width)) * std::uint64_t(std::max(0, size.height));
+  const std::uint64_t total = pixels * std::uint64_t(settings.samples);
+  if (total > kMaxEnvironmentImageSamples)
+    throw InvalidField("samples", fmt::format("{}x{} pixels with {} {} is {} samples, more than the 2^{} an image "
+                                              "may take", size.width, size.height, samples, settings.samples, total,
+                                              kMaxEnvironmentImageSamplesLog2));
+}
 
 Image render_environment(const Scene& scene, const Environment& environment, const RenderSettings& size,
                          const EnvironmentSettings& settings) {

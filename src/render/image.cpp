@@ -35,10 +35,6 @@ void Image::set(int x, int y, const Rgb& value) noexcept {
   p[2] = static_cast<float>(value.b);
 }
 
-const char* to_string(ToneMap tone_map) noexcept {
-  return tone_map == ToneMap::aces ? "aces" : "none";
-}
-
 double aces_narkowicz(double x) noexcept {
   return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }

@@ -45,7 +45,7 @@ PanelGeometry::PanelGeometry(int panel_count, int panel_width, int panel_height,
   const long long height = m + rows * (panel_height + layout.label_height + m);
   if (width > kMaxImageSide || height > kMaxImageSide)
     throw InvalidArgument(fmt::format("the comparison panel would be {}x{} pixels, more than {} on a side: "
-                                      "use fewer models or a smaller --size", width, height, kMaxImageSide));
+                                      "use fewer models or a smaller size", width, height, kMaxImageSide));
   width_ = static_cast<int>(width);
   height_ = static_cast<int>(height);
 }

@@ -125,7 +125,7 @@ std::string user_lobe_errors(Context& context, const std::vector<double>& sweep_
       worst_rel = std::max(worst_rel, e.max_rel_epicenter);
       worst_abs = std::max(worst_abs, e.max_abs);
     }
-    rows.push_back({xml_escape(info->id), xml_escape(info->origin), fmt::format("{}", ns.size()),
+    rows.push_back({xml_escape(info->id), xml_escape(to_string(info->origin)), fmt::format("{}", ns.size()),
                     show(100 * worst_rel, 4) + " %", show(worst_abs, 6)});
     if (!ns.empty()) chart.series.push_back(std::move(series));
   }

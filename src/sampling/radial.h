@@ -4,25 +4,22 @@
 // x = cos(angle from the axis), given with y = −ln x (exact for narrow lobes, where 1 − x
 // underflows), and a sampler of the angle from one uniform number by the inverse CDF.
 //
-//   Power       (n + 1)/(2π) xⁿ                       x = (1 − u)^(1/(n+1))
-//   Beckmann    exp(−tan²/α²)/(π α² x³)  (D·cos)     tan² = −α² ln(1 − u)
-//   Log         F_log(x)/(2π ∫₀¹F_log dx)            Newton on the closed-form CDF in t
-//   Table       any shape g(y), piecewise constant in y on 4096 cells, sampled by binary search
+// The densities themselves are include/specula/lobes/portable/radial.h's, which the C++ export
+// embeds: these classes hold a density's parameters and tables.
 #include <functional>
 #include <vector>
 
+#include "specula/lobes/portable/radial.h"
+
 namespace specula::sampling {
 
-struct PolarAngle {
-  double cos = 1, sin = 0;
-  static PolarAngle from_log_cos(double y) noexcept;
-};
+using radial::PolarAngle;
 
 class PowerRadial {
  public:
   explicit PowerRadial(double n) : n_(n) {}
-  double density(double y) const noexcept;
-  PolarAngle sample(double u) const noexcept;
+  double density(double y) const noexcept { return radial::power_density(n_, y); }
+  PolarAngle sample(double u) const noexcept { return radial::power_sample(n_, u); }
 
  private:
   double n_;
@@ -31,8 +28,8 @@ class PowerRadial {
 class BeckmannRadial {
  public:
   explicit BeckmannRadial(double alpha) : alpha_(alpha) {}
-  double density(double y) const noexcept;
-  PolarAngle sample(double u) const noexcept;
+  double density(double y) const noexcept { return radial::beckmann_density(alpha_, y); }
+  PolarAngle sample(double u) const noexcept { return radial::beckmann_sample(alpha_, u); }
 
  private:
   double alpha_;
@@ -42,16 +39,14 @@ class BeckmannRadial {
 /// F_t(t) e^(−bt)/G(3), F_t = 1 − ½ log₂(1 + t), and G has a closed form through E₁.
 class LogRadial {
  public:
-  explicit LogRadial(double n);
-  double density(double y) const noexcept;
-  PolarAngle sample(double u) const noexcept;
+  explicit LogRadial(double n) : data_(n) {}
+  double density(double y) const noexcept { return radial::log_density(data_, y); }
+  PolarAngle sample(double u) const noexcept { return radial::log_sample(data_, u); }
   /// ∫₀^T F_t(s) e^(−bs) ds (exposed for the tests).
-  double cdf_integral(double t) const noexcept;
+  double cdf_integral(double t) const noexcept { return radial::log_t_integral(data_.b, t); }
 
  private:
-  double b_;
-  double total_;  ///< G(3)
-  std::vector<double> start_;  ///< T at u = j/(size − 1): Newton's first guess
+  radial::LogRadialData data_;
 };
 
 class TableRadial {
@@ -63,8 +58,8 @@ class TableRadial {
   TableRadial(const std::function<double(double)>& g, double width, double y_end);
   /// False if g integrated to 0 (or not finite): nothing to sample.
   bool usable() const noexcept { return usable_; }
-  double density(double y) const noexcept;
-  PolarAngle sample(double u) const noexcept;
+  double density(double y) const noexcept { return radial::table_density(view(), y); }
+  PolarAngle sample(double u) const noexcept { return radial::table_sample(view(), u); }
   /// ∫ |p_table − p| dy over [0, y_end], p the normalized density of g (by 8-point Gauss-Legendre
   /// per cell).
   double l1_error() const noexcept { return l1_error_; }
@@ -74,8 +69,7 @@ class TableRadial {
   const std::vector<double>& cumulative() const noexcept { return cumulative_; }
 
  private:
-  double y_at(int cell) const noexcept;
-  int cell_of(double y) const noexcept;
+  radial::TableView view() const noexcept { return {cumulative_.data(), kCells, width_, y_end_, ds_}; }
 
   double width_, y_end_, ds_;
   std::vector<double> cumulative_;  ///< kCells + 1 values, 0 … 1

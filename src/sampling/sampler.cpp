@@ -34,48 +34,9 @@ enum class Axis {
 
 using Radial = std::variant<std::monostate, PowerRadial, BeckmannRadial, LogRadial, TableRadial>;
 
-/// y = −ln cos of the angle between the unit vectors a and b, from the sine near 0° (exact for
-/// small angles), from the cosine beyond 60°; +∞ at or beyond 90°.
-double log_cos_between(const Vec3& a, const Vec3& b) noexcept {
-  const double c = dot(a, b);
-  if (!(c > 0)) return std::numeric_limits<double>::infinity();
-  if (c < 0.5) return -std::log(c);
-  const Vec3 s = cross(a, b);
-  return -0.5 * std::log1p(-dot(s, s));
-}
-
-Vec3 mirror(const Vec3& wi, const Vec3& h) noexcept { return h * (2 * dot(wi, h)) - wi; }
-
-Vec3 cosine_direction(double u1, double u2) noexcept {
-  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1))};
-}
-
-/// GGX: D(H) and the visible-normal sample of Heitz 2018 ("Sampling the GGX Distribution of
-/// Visible Normals", JCGT 7(4)), isotropic, ω_i as the viewing direction.
-struct GgxNormals {
-  double alpha;
-
-  Vec3 sample(const Vec3& wi, double u1, double u2) const noexcept {
-    const Vec3 vh = normalized(Vec3{alpha * wi.x, alpha * wi.y, wi.z});
-    const double len2 = vh.x * vh.x + vh.y * vh.y;
-    const Vec3 t1 = len2 > 0 ? Vec3{-vh.y, vh.x, 0} * (1 / std::sqrt(len2)) : Vec3{1, 0, 0};
-    const Vec3 t2 = cross(vh, t1);
-    const double r = std::sqrt(u1), phi = 2 * kPi * u2;
-    const double p1 = r * std::cos(phi), s = 0.5 * (1 + vh.z);
-    const double p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * r * std::sin(phi);
-    const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2));
-    return normalized(Vec3{alpha * nh.x, alpha * nh.y, std::max(0.0, nh.z)});
-  }
-  /// D_ωi(H)/(4 ω_i·H) = G₁(ω_i) D(H)/(4 cos θ_i).
-  double pdf(const Vec3& wi, const Vec3& h) const noexcept {
-    if (!(h.z > 0) || !(dot(wi, h) > 0)) return 0;
-    const double a2 = alpha * alpha, sin2 = h.x * h.x + h.y * h.y, q = h.z * h.z * a2 + sin2;
-    const double d = a2 / (kPi * q * q);
-    const double g1 = 1 / (1 + Ggx::smith_lambda(wi.z, a2));
-    return g1 * d / (4 * wi.z);
-  }
-};
+using radial::cosine_direction;
+using radial::log_cos_between;
+using radial::mirror;
 
 TableRadial lobe_table(const lobes::Lobe& lobe) {
   return std::visit(
@@ -94,7 +55,7 @@ TableRadial brdf_table(const Model& model) {
   const double width = std::max(1e-9, -std::log(std::cos(std::min(analysis::angular_width(model), 1.5))));
   return TableRadial(
       [&](double y) {
-        const PolarAngle a = PolarAngle::from_log_cos(y);
+        const PolarAngle a = radial::from_log_cos(y);
         const Vec3 h{a.sin, 0, a.cos};
         return model(kNormal, h, h) * a.cos * a.cos;
       },
@@ -169,7 +130,7 @@ struct Sampler::Impl {
 
   /// ω_o by the model's own strategy (not the cosine share); z ≤ 0 when it left the hemisphere.
   Vec3 strategy_sample(const Vec3& wi, double u1, double u2) const noexcept {
-    if (method == Method::ggx_visible_normals) return mirror(wi, GgxNormals{alpha}.sample(wi, u1, u2));
+    if (method == Method::ggx_visible_normals) return mirror(wi, radial::ggx_visible_normal(alpha, wi, u1, u2));
     const PolarAngle a = radial_sample(u1);
     const double phi = 2 * kPi * u2;
     if (axis == Axis::reflection) return Frame(Vec3{-wi.x, -wi.y, wi.z}).to_world(a.cos, a.sin, phi);
@@ -185,7 +146,7 @@ struct Sampler::Impl {
     const Vec3 h = normalized(sum);
     const double wo_h = dot(wo, h);
     if (!(wo_h > 0)) return 0;
-    if (method == Method::ggx_visible_normals) return GgxNormals{alpha}.pdf(wi, h);
+    if (method == Method::ggx_visible_normals) return radial::ggx_visible_pdf(alpha, wi, h);
     return radial_density(log_cos_between(kNormal, h)) / (4 * wo_h);
   }
 
@@ -197,7 +158,7 @@ struct Sampler::Impl {
   Vec3 compensated_sample(const Vec3& wi, double u1, double u2) const noexcept {
     const double p = base_probability(wi);
     if (u1 < p) return base->sample(wi, std::min(u1 / p, kBelowOne), u2).wo;
-    return cosine_direction(std::min((u1 - p) / (1 - p), kBelowOne), u2);
+    return cosine_direction<Vec3>(std::min((u1 - p) / (1 - p), kBelowOne), u2);
   }
 
   double pdf(const Vec3& wi, const Vec3& wo) const noexcept {
@@ -223,7 +184,7 @@ Sample Sampler::sample(const Vec3& wi, double u1, double u2) const noexcept {
   if (s.base) {
     wo = s.compensated_sample(wi, u1, u2);
   } else if (u1 < s.share) {
-    wo = cosine_direction(std::min(u1 / s.share, kBelowOne), u2);
+    wo = cosine_direction<Vec3>(std::min(u1 / s.share, kBelowOne), u2);
   } else {
     const double u = s.share > 0 ? std::min((u1 - s.share) / (1 - s.share), kBelowOne) : u1;
     wo = s.strategy_sample(wi, u, u2);

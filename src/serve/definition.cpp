@@ -148,7 +148,7 @@ std::shared_ptr<const ModelInfo> definition_model(const Json& definition, const 
     fail_at_field(file, e.what());
   }
   ModelInfo info = std::move(models.front());
-  info.origin = "request";
+  info.origin = {OriginKind::request, ""};
   return std::make_shared<const ModelInfo>(std::move(info));
 }
 

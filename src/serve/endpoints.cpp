@@ -23,8 +23,8 @@ constexpr auto kKey = queries::Spelling::key;
 }
 
 /// The cap on n values: fewer when each is a search of its own (the strict condition).
-std::size_t n_cap(const Fields& f, const Limits& limits) {
-  return f.text_or("condition", "normal") == "strict" ? limits.max_strict_n : limits.max_n;
+std::size_t n_cap(queries::Condition condition, const Limits& limits) {
+  return condition == queries::Condition::strict ? limits.max_strict_n : limits.max_n;
 }
 
 }  // namespace
@@ -52,10 +52,10 @@ std::string normalize_endpoint(std::string_view body, const Limits& limits) {
   q.model = f.model_ref("model");
   q.params = f.params();
   if (f.has("form")) q.form = queries::form_named(f.text("form"), kKey);
-  if (f.has("n")) q.n = f.values("n", n_cap(f, limits));
-  q.method = f.text_or("method", q.method);
+  q.method = queries::normalize_method_named(f.text_or("method", to_string(q.method)), kKey);
+  q.condition = queries::condition_named(f.text_or("condition", to_string(q.condition)), kKey);
+  if (f.has("n")) q.n = f.values("n", n_cap(q.condition, limits));
   if (f.has("compare")) q.compare = f.model_ref("compare");
-  q.condition = f.text_or("condition", q.condition);
   q.step = f.number_or("step", q.step);
   return io::to_json(queries::normalize_table(q, kKey));
 }
@@ -65,10 +65,10 @@ std::string albedo_endpoint(std::string_view body, const Limits& limits) {
   const Model m = queries::make(f.model(), kKey);
   queries::AlbedoQuery q;
   q.theta_deg = f.values_or("theta", "0:80:10,85,89", limits.max_albedo_angles);
-  q.method = f.text_or("method", q.method);
+  q.method = queries::albedo_method_named(f.text_or("method", to_string(q.method)), kKey);
   q.samples = static_cast<std::uint64_t>(f.integer_or("samples", 100'000, 1, 1'000'000'000));
   q.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
-  if (q.method == "monte-carlo" && q.samples * q.theta_deg.size() > limits.max_monte_carlo_samples)
+  if (q.method == queries::AlbedoMethod::monte_carlo && q.samples * q.theta_deg.size() > limits.max_monte_carlo_samples)
     fail("samples", fmt::format("samples × angles = {} exceeds {} per request",
                                 q.samples * q.theta_deg.size(), limits.max_monte_carlo_samples));
   return io::to_json(queries::albedo_table(m, q, kKey));
@@ -135,22 +135,20 @@ nlohmann::ordered_json scene_json(const Model& m, const Fields& f, const Limits&
 std::string glsl_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "form", "coef", "dialect", "shader", "light", "size"});
   const Model m = queries::make(f.model(), kKey);
-  const std::string dialect = f.text_or("dialect", "webgl2");
-  const std::string function = queries::glsl_function(m, dialect, kKey);
-  const glsl::Dialect parsed = glsl::parse_dialect(dialect);
+  const glsl::Dialect dialect = queries::dialect_named(f.text_or("dialect", glsl::to_string(glsl::Dialect::webgl2)));
   nlohmann::ordered_json out;
   for (const auto& [key, value] : model_meta(m)) out[key] = value;
-  out["dialect"] = dialect;
+  out["dialect"] = glsl::to_string(dialect);
   out["entry"] = "specula_brdf";
   out["entry_params"] = glsl::model_params(m);
-  out["version_header"] = glsl::version_header(parsed);
-  out["function"] = function;
+  out["version_header"] = glsl::version_header(dialect);
+  out["function"] = queries::glsl_function(m, dialect);
   const bool shader = f.flag_or("shader", false);
   if (!shader && (f.has("light") || f.has("size"))) fail(f.has("light") ? "light" : "size", "light and size go with shader: true");
   if (shader) {
     // The comparison sphere as `specula render --backend gl` draws it (render/scene_shader.h).
-    out["vertex_shader"] = render::scene_vertex_shader(parsed);
-    out["fragment_shader"] = render::scene_fragment_shader(m, parsed, render::SceneGeometry::spheres);
+    out["vertex_shader"] = render::scene_vertex_shader(dialect);
+    out["fragment_shader"] = render::scene_fragment_shader(m, dialect, render::SceneGeometry::spheres);
     out["uniforms"] = scene_json(m, f, limits);
   }
   return out.dump(2) + "\n";

@@ -36,7 +36,7 @@ struct FitJobs::Job {
   fit::Progress progress;
   std::vector<fit::Candidate> front;
   std::optional<std::size_t> chosen;
-  std::string stopped_by;
+  std::optional<fit::StopReason> stopped_by;
 };
 
 namespace {
@@ -141,6 +141,10 @@ void read_options(const Fields& f, fit::Options& o, const Limits& limits) {
   o.population = static_cast<int>(f.integer_or("population", o.population, 4, limits.max_fit_population));
   o.islands = static_cast<int>(f.integer_or("islands", o.islands, 1, limits.max_fit_islands));
   o.enumerate_max_size = static_cast<int>(f.integer_or("enumerate_size", o.enumerate_max_size, 0, 15));
+  o.snap = f.flag_or("snap", true);
+  o.snap_tolerance = f.number_or("snap_tolerance", o.snap_tolerance);
+  if (!(o.snap_tolerance > 0 && o.snap_tolerance <= 1))
+    fail("snap_tolerance", fmt::format("snap_tolerance {} is outside (0, 1]", o.snap_tolerance));
   o.test_fraction = f.number_or("test_fraction", 0);
   if (!(o.test_fraction >= 0 && o.test_fraction < 1))
     fail("test_fraction", fmt::format("test_fraction {} is outside [0, 1)", o.test_fraction));
@@ -168,7 +172,7 @@ std::string status_json(const Job& job) {
            {"front", Json::array()}};
   for (const auto& c : job.front) out["front"].push_back(candidate_json(c, job));
   out["chosen"] = job.chosen ? Json(*job.chosen) : Json();
-  out["stopped_by"] = job.stopped_by.empty() ? Json() : Json(job.stopped_by);
+  out["stopped_by"] = job.stopped_by ? Json(fit::to_string(*job.stopped_by)) : Json();
   if (!job.error.empty()) out["error"] = job.error;
   return out.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";  // an error may echo anything
 }
@@ -188,7 +192,7 @@ void run_job(Job& job) {
     job.progress.elapsed_s = result.seconds;
     job.progress.evaluations = result.evaluations;
     job.progress.generations = result.generations;
-    job.state = result.stopped_by == "cancelled" ? "cancelled" : "done";
+    job.state = result.stopped_by == fit::StopReason::cancelled ? "cancelled" : "done";
   } catch (const Interrupted& e) {  // a library check of the job's work limit (or a signal)
     const std::lock_guard lock(job.mutex);
     if (e.reason() == Interrupted::Reason::deadline) {
@@ -196,7 +200,7 @@ void run_job(Job& job) {
       job.error = fmt::format("the search ran past its time budget and was stopped");
     } else {
       job.state = "cancelled";
-      job.stopped_by = "cancelled";
+      job.stopped_by = fit::StopReason::cancelled;
     }
   } catch (const std::exception& e) {
     const std::lock_guard lock(job.mutex);
@@ -236,7 +240,7 @@ FitJobs::~FitJobs() {
 std::int64_t FitJobs::start(std::string_view body) {
   const Fields f(body, {"data", "model", "params", "form", "n", "round", "ops", "constants", "size_weights",
                         "metric", "choose", "max_size", "seed", "generations", "time", "population",
-                        "islands", "enumerate_size", "test_fraction"});
+                        "islands", "enumerate_size", "test_fraction", "snap", "snap_tolerance"});
   auto job = std::make_shared<Job>();
   if (f.has("data") == f.has("model")) fail("data", "give data (columns to fit) or model (to fit its normalization), one of them");
   if (f.has("data")) {

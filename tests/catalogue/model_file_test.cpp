@@ -118,8 +118,9 @@ TEST(FormulaLobe, AnInlineLobeIsTheBuiltInOne) {
   const Model brdf = make_model("brdf: rho/pi", {{"rho", 0.5}});
   EXPECT_FALSE(brdf.is_lobe());
   EXPECT_DOUBLE_EQ(brdf(Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}), 0.5 / std::numbers::pi);
-  EXPECT_THAT(error_of([] { (void)make_model("lobe: c^^n"); }), StartsWith("--model: column 9: "));
-  EXPECT_EQ(error_of([] { (void)make_model("lobe: foo(c)"); }), "--model: column 7: unknown function 'foo'");
+  // The column in the definition; the interface that asked names its field before it (queries).
+  EXPECT_THAT(error_of([] { (void)make_model("lobe: c^^n"); }), StartsWith("column 9: "));
+  EXPECT_EQ(error_of([] { (void)make_model("lobe: foo(c)"); }), "column 7: unknown function 'foo'");
 }
 
 // The scalar batch (lobes::Formula::eval_batch, the analysis's path) is bit-identical to the
@@ -196,7 +197,8 @@ std::string parse_error(const std::string& text) {
 TEST(ModelFileErrors, TheControlParses) {
   const auto models = parse_model_file(kGood, "m.toml");
   ASSERT_EQ(models.size(), 1u);
-  EXPECT_EQ(models[0].origin, "m.toml:1");
+  EXPECT_EQ(models[0].origin.kind, OriginKind::file);
+  EXPECT_EQ(to_string(models[0].origin), "m.toml:1");
   EXPECT_EQ(make_model(std::make_shared<const ModelInfo>(models[0])).at_cos(0.5), 0.25);
 }
 

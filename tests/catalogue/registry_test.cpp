@@ -82,6 +82,46 @@ TEST(Registry, BadInputIsNamed) {
   EXPECT_THAT(error_of([] { make_model("log").param("alpha"); }), HasSubstr("no parameter 'alpha'"));
 }
 
+/// The field (and for a parameter, the parameter) that make_model names: "no error" when it makes
+/// the model.
+std::string field_of(const std::function<void()>& make) {
+  try {
+    make();
+  } catch (const InvalidParameter& e) {
+    return e.field() + " " + e.param();
+  } catch (const InvalidField& e) {
+    return e.field();
+  }
+  return "no error";
+}
+
+// make_model names the field at fault, so that an interface asks it once and answers with the
+// field (queries::make).
+TEST(Registry, MakeModelNamesTheFieldAtFault) {
+  EXPECT_EQ(field_of([] { make_model("ggx", {{"alpha", 0.5}}); }), "no error");  // control
+  EXPECT_EQ(field_of([] { make_model("blinn"); }), "model");
+  EXPECT_EQ(field_of([] { make_model("lobe: c^*n"); }), "model");
+  EXPECT_EQ(field_of([] { make_model("log", {{"m", 2}}); }), "params m");
+  EXPECT_EQ(field_of([] { make_model("log", {{"n", 0}}); }), "params n");
+  EXPECT_EQ(field_of([] { make_model("ward", {}, Form::nh); }), "form");
+  EXPECT_EQ(field_of([] { make_model("ward", {{"alpha", -1}}, Form::nh); }), "params alpha");  // params first
+}
+
+TEST(Registry, KindsNormalizationsAndOriginsHaveNames) {
+  EXPECT_STREQ(to_string(ModelKind::lobe), "lobe");
+  EXPECT_STREQ(to_string(ModelKind::brdf), "brdf");
+  EXPECT_STREQ(to_string(Normalization::quadrature), "quadrature");
+  EXPECT_EQ(find_model("log")->origin.kind, OriginKind::builtin);
+  EXPECT_TRUE(find_model("log")->is_builtin());
+  EXPECT_EQ(to_string(find_model("log")->origin), "built-in");
+  const Model inline_lobe = make_model("lobe: c^n");
+  EXPECT_EQ(inline_lobe.info().origin.kind, OriginKind::inline_formula);
+  EXPECT_FALSE(inline_lobe.info().is_builtin());
+  EXPECT_EQ(to_string(inline_lobe.info().origin), "inline");
+  EXPECT_EQ(to_string(ModelOrigin{OriginKind::file, "my.toml:3"}), "my.toml:3");
+  EXPECT_EQ(error_of([] { parse_form("hn"); }), "unknown form 'hn' (expected rv or nh)");
+}
+
 TEST(Registry, ParamRangeText) {
   EXPECT_EQ(find_model("log")->params[0].range_text(), "(0, 1e+09]");
   EXPECT_EQ(find_model("ggx")->find_param("f0")->range_text(), "[0, 1]");

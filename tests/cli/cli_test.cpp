@@ -146,7 +146,7 @@ TEST_F(Cli, NormalizePhongInNhFormIsBlinnPhongsExactCoefficient) {
 
 TEST_F(Cli, NormalizeExactWithoutClosedFormFails) {
   const Result r = bad({"normalize", "--model", "gauss", "--n", "20", "--method", "exact"});
-  EXPECT_THAT(r.err, HasSubstr("quadrature"));
+  EXPECT_THAT(r.err, HasSubstr("; use --method quadrature"));
   // …and quadrature works.
   const Csv csv = parse_csv(ok({"normalize", "--model", "gauss", "--n", "20", "--method", "quadrature"}).out);
   ASSERT_EQ(csv.rows.size(), 1u);

@@ -259,7 +259,7 @@ void expect_tampering_shows(const Model& model, const std::vector<std::pair<std:
 TEST(CppExport, ATamperedSamplerDiffers) {
   expect_tampering_shows(make_model("gauss", {{"n", 40}}),
                          {{R"(constexpr double kShare = 0\.1;)", "constexpr double kShare = 0.2;"},
-                          {"constexpr double kWidth = ", "constexpr double kWidth = 1.01 * "}});
+                          {"TableView kTable\\{kCumulative, kCells, ", "TableView kTable{kCumulative, kCells, 1.01 * "}});
 }
 
 // M+ms: M's share 0.9 E(mu_i) in place of E(mu_i), or M's density alone.

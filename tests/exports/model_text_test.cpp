@@ -99,7 +99,7 @@ Failures check_exports(const std::vector<Model>& models) {
       expect(only_in_comments(text[format], "pwned", format == Format::brdf),
              fmt::format("{}: 'pwned' outside a comment in --format {}", name, to_string(format)));
     }
-    const std::string function = queries::glsl_function(model, "glsl330", queries::Spelling::option);
+    const std::string function = queries::glsl_function(model, glsl::Dialect::glsl330);
     expect(only_in_comments(function, "pwned"), name + ": 'pwned' outside a comment in its GLSL");
     const auto hlsl = testing::validate_hlsl(text[Format::hlsl]);
     expect(hlsl.ok, name + ": HLSL", hlsl.log);

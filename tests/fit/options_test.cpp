@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "specula/exceptions.h"
 #include "specula/fit/fit.h"
@@ -26,7 +28,7 @@ TEST(Measure, ComputesEachMetricByHand) {
 }
 
 TEST(Metric, NamesRoundTrip) {
-  for (Metric m : {Metric::rms, Metric::mae, Metric::max_abs, Metric::mean_relative, Metric::r2})
+  for (Metric m : {Metric::rms, Metric::mae, Metric::max_abs, Metric::max_rel, Metric::mean_relative, Metric::r2})
     EXPECT_EQ(parse_metric(metric_name(m)), m);
   EXPECT_THROW(parse_metric("mse"), InvalidArgument);
   EXPECT_EQ(to_loss(Metric::r2, 0.75), 0.25);
@@ -53,6 +55,14 @@ TEST(OptionNames, EveryEnumeratorRoundTrips) {
   EXPECT_EQ(split_named("first"), std::nullopt);
 }
 
+// Why a search stopped is an enum; its names are what `fit --format json` and the server's fit
+// status print in stopped_by, as when they were strings.
+TEST(OptionNames, StopReasonsKeepTheirNames) {
+  std::vector<std::string_view> names;
+  for (const StopReason r : enumerators<StopReason, kStopReasonCount>()) names.push_back(to_string(r));
+  EXPECT_EQ(names, (std::vector<std::string_view>{"time", "generations", "evaluations", "target error", "cancelled"}));
+}
+
 // The messages as they were before the names came from one list, byte for byte.
 TEST(OptionNames, MessagesListTheNames) {
   const auto message = [](auto parse, const char* text) {
@@ -63,10 +73,10 @@ TEST(OptionNames, MessagesListTheNames) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(parse_metric, "mse"), "unknown metric 'mse' (expected rms, mae, max-abs, mean-relative or r2)");
+  EXPECT_EQ(message(parse_metric, "mse"), "unknown metric 'mse' (expected rms, mae, max-abs, max-rel, mean-relative or r2)");
   EXPECT_EQ(message(parse_constants, "all"), "unknown constants mode 'all' (expected fitted, integer or none)");
   EXPECT_EQ(message(parse_choice, "first"), "unknown choice 'first' (expected parsimonious, knee or best)");
-  EXPECT_EQ((names_listed<Metric, kMetricCount>(metric_name, " | ", " | ")), "rms | mae | max-abs | mean-relative | r2");
+  EXPECT_EQ((names_listed<Metric, kMetricCount>(metric_name, " | ", " | ")), "rms | mae | max-abs | max-rel | mean-relative | r2");
   EXPECT_EQ((names_listed<Split, kSplitCount>(split_name)), "random or last");
 }
 

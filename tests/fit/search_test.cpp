@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <future>
+#include <numbers>
 #include <string>
 #include <thread>
 
@@ -182,12 +183,12 @@ TEST(Search, StopsAtTheTargetErrorOrTheEvaluationBudget) {
   const Data d = sampled("2*x + 1", 0, 1, 10);
   Options o = quick(1000);
   o.target_error = 1e-9;
-  EXPECT_EQ(search(d, o).stopped_by, "target error");
+  EXPECT_EQ(search(d, o).stopped_by, StopReason::target_error);
   const Data hard = sampled("sin(3*x) + x*x", 0, 2, 30);
   Options budget = quick(1000);
   budget.max_evaluations = 3000;
   const Result r = search(hard, budget);
-  EXPECT_EQ(r.stopped_by, "evaluations");
+  EXPECT_EQ(r.stopped_by, StopReason::evaluations);
   EXPECT_GE(r.evaluations, 3000);
 }
 
@@ -202,7 +203,7 @@ TEST(Search, ACancelledSearchStopsWithTheFrontSoFar) {
     EXPECT_FALSE(p.front->empty());
     cancel = true;  // seen at the next budget check, before the genetic search
   });
-  EXPECT_EQ(r.stopped_by, "cancelled");
+  EXPECT_EQ(r.stopped_by, StopReason::cancelled);
   EXPECT_LE(reports, 2);  // the chunk reported, and at most one more
   EXPECT_FALSE(r.front.empty());
   EXPECT_EQ(r.generations, 0);
@@ -274,7 +275,7 @@ TEST(SearchBudget, AFormulaSpaceSmallerThanThePopulationStopsAtTheTimeBudget) {
   o.threads = 2;
   const auto start = std::chrono::steady_clock::now();
   const Result r = finishes_within(std::chrono::seconds(60), three_rows(), o);
-  EXPECT_EQ(r.stopped_by, "time");
+  EXPECT_EQ(r.stopped_by, StopReason::time);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
   EXPECT_FALSE(r.front.empty());
 }
@@ -287,7 +288,7 @@ TEST(SearchBudget, AFormulaSpaceSmallerThanThePopulationStopsAtTheGenerationBudg
   o.time_limit_s = 1e4;
   o.threads = 2;
   const Result r = finishes_within(std::chrono::seconds(60), three_rows(), o);
-  EXPECT_EQ(r.stopped_by, "generations");
+  EXPECT_EQ(r.stopped_by, StopReason::generations);
   EXPECT_EQ(r.generations, 2);
 }
 
@@ -300,7 +301,7 @@ TEST(SearchBudget, AHugePopulationStillStopsAtTheTimeBudget) {
   o.time_limit_s = 1;
   const auto start = std::chrono::steady_clock::now();
   const Result r = finishes_within(std::chrono::seconds(60), sampled("x*x + 1", 0, 2, 20), o);
-  EXPECT_EQ(r.stopped_by, "time");
+  EXPECT_EQ(r.stopped_by, StopReason::time);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
 }
 
@@ -315,7 +316,7 @@ TEST(SearchBudget, ACancelStopsTheSearchWhileItFillsThePopulation) {
   });
   const Result r = finishes_within(std::chrono::seconds(60), sampled("x*x + 1", 0, 2, 20), o);
   canceller.join();
-  EXPECT_EQ(r.stopped_by, "cancelled");
+  EXPECT_EQ(r.stopped_by, StopReason::cancelled);
 }
 
 TEST(SearchBudget, TheCallersDeadlineCountsAsTheTimeBudget) {
@@ -328,7 +329,7 @@ TEST(SearchBudget, TheCallersDeadlineCountsAsTheTimeBudget) {
     return search(d, o);
   });
   ASSERT_EQ(running.wait_for(std::chrono::seconds(60)), std::future_status::ready);
-  EXPECT_EQ(running.get().stopped_by, "time");
+  EXPECT_EQ(running.get().stopped_by, StopReason::time);
 }
 
 TEST(SearchBudget, AStopRequestEndsTheSearchWithInterrupted) {
@@ -368,6 +369,90 @@ TEST(SearchBudget, SizeOptionsOutsideTheirDocumentedRangeAreRefused) {
   o.max_size = OptionRanges::max_size;
   o.time_limit_s = 30;
   EXPECT_NO_THROW(finishes_within(std::chrono::seconds(240), d, o));
+}
+
+// A size option out of its range is InvalidField named by its key (the server's fit field too),
+// never by a CLI option: the CLI checks its options against OptionRanges before the search.
+TEST(SearchBudget, AnOptionOutsideItsRangeIsNamedByItsKey) {
+  const Data d = sampled("x", 0, 1, 10);
+  const auto refusal = [&](auto change) {
+    Options o = quick(0);
+    change(o);
+    try {
+      search(d, o);
+    } catch (const InvalidField& e) {
+      return e.field() + ": " + e.what();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(refusal([](Options&) {}), "no error");  // control
+  EXPECT_EQ(refusal([](Options& o) { o.max_size = 0; }), "max_size: max_size must be in [1, 100], got 0");
+  EXPECT_EQ(refusal([](Options& o) { o.enumerate_max_size = 31; }),
+            "enumerate_size: enumerate_size must be in [0, 30], got 31");
+  EXPECT_EQ(refusal([](Options& o) { o.islands = 65; }), "islands: islands must be in [1, 64], got 65");
+  EXPECT_EQ(refusal([](Options& o) { o.population = 3; }), "population: population must be in [4, 20000], got 3");
+  EXPECT_EQ(refusal([](Options& o) { o.threads = -1; }), "threads: threads must be in [0, 1024], got -1");
+}
+
+}  // namespace
+}  // namespace specula::fit
+
+namespace specula::fit {
+namespace {
+
+// --metric max-abs fits constants for the largest error itself: the Chebyshev line of eˣ on [0, 1]
+// has max error ((e − 1) ln(e − 1) − e + 2)/2 (least squares: 0.1547, minimax_test's control).
+TEST(Search, MaxAbsFitsConstantsForTheLargestError) {
+  Data d{{"x"}, {{}}, {}};
+  for (int i = 0; i <= 1000; ++i) {
+    d.columns[0].push_back(i / 1000.0);
+    d.target.push_back(std::exp(i / 1000.0));
+  }
+  Options o;
+  o.operators = parse_operators("+,*");
+  o.max_size = 5;
+  o.metric = Metric::max_abs;
+  o.max_generations = 3;
+  o.threads = 1;
+  o.snap = false;
+  const double e = std::numbers::e;
+  EXPECT_NEAR(search(d, o).front.back().train_error, ((e - 1) * std::log(e - 1) - e + 2) / 2, 1e-4);
+}
+
+/// The chosen formula of y = x²/3 + πx on 41 points, with or without snapping.
+std::string chosen_for_third_and_pi(bool snap) {
+  Data d{{"x"}, {{}}, {}};
+  for (int i = 0; i <= 40; ++i) {
+    const double x = i / 10.0;
+    d.columns[0].push_back(x);
+    d.target.push_back(x * x / 3 + std::numbers::pi * x);
+  }
+  Options o;
+  o.max_generations = 60;
+  o.threads = 1;
+  o.snap = snap;
+  const Result r = search(d, o);
+  return expr::to_infix(r.front[r.chosen].formula);
+}
+
+TEST(Search, SnappedConstantsPrintAsAThirdAndMultiplesOfPi) {
+  const std::string snapped = chosen_for_third_and_pi(true);
+  EXPECT_NE(snapped.find("pi"), std::string::npos) << snapped;
+  // Negative control: without snapping the same search prints the fitted doubles.
+  const std::string fitted = chosen_for_third_and_pi(false);
+  EXPECT_EQ(fitted.find("pi"), std::string::npos) << fitted;
+}
+
+TEST(Search, SnapToleranceOutsideItsRangeIsRefusedByKey) {
+  Data d{{"x"}, {{1, 2, 3}}, {1, 2, 3}};
+  Options o;
+  o.snap_tolerance = 0;
+  try {
+    search(d, o);
+    FAIL() << "snap_tolerance 0 was accepted";
+  } catch (const InvalidField& e) {
+    EXPECT_EQ(e.field(), "snap_tolerance");
+  }
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <regex>
+#include <span>
 
 #include "glsl_support.h"
 #include "specula/catalogue/catalogue.h"
@@ -124,6 +126,36 @@ TEST(Glsl, FormAndCoefficientOverridesAreBakedIn) {
   EXPECT_EQ(overridden.find("specula_log_rv_coef"), std::string::npos);
   const std::string bare = model_glsl(make_model("log"));
   EXPECT_NE(bare.find("return specula_log_lobe(specula_cos_rv(N, L, V), n);"), std::string::npos);
+}
+
+// Whether k was overridden is the Model's own knowledge (Model::coef_overridden): its own k given
+// back is no override, another k is, and the emitter makes no model to find out.
+TEST(Glsl, AnOverrideIsWhatTheModelSaysItIs) {
+  const Model own = make_model("log-normalized", {{"n", 50}});
+  EXPECT_FALSE(own.coef_overridden());
+  EXPECT_FALSE(own.with_coef(own.coef()).coef_overridden());
+  EXPECT_EQ(model_glsl(own.with_coef(own.coef())), model_glsl(own));
+  const Model given = own.with_coef(3.5);
+  EXPECT_TRUE(given.coef_overridden());
+  EXPECT_FALSE(given.with_coef(own.coef()).coef_overridden());  // its own k again
+  EXPECT_TRUE(coef_is_baked(given));
+  EXPECT_FALSE(coef_is_baked(own));
+  EXPECT_FALSE(make_model("ggx").coef_overridden());
+}
+
+TEST(Glsl, TheEmitterMakesNoModel) {
+  auto made = std::make_shared<int>(0);
+  auto info = std::make_shared<ModelInfo>(*find_model("log-normalized"));
+  info->make = [made, make = info->make](std::span<const double> values) {
+    ++*made;
+    return make(values);
+  };
+  const Model own = make_model(info, {{"n", 50}});
+  EXPECT_EQ(*made, 1);  // the control: the counter counts
+  const Model given = own.with_coef(3.5);
+  EXPECT_NE(model_glsl(own), model_glsl(given));
+  EXPECT_NE(coef_is_baked(own), coef_is_baked(given));
+  EXPECT_EQ(*made, 1);
 }
 
 TEST(Glsl, UserModelsCarryTheirFormulasCoefficientsAndParameters) {

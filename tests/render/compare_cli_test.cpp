@@ -112,6 +112,8 @@ TEST(CompareCli, BadInputFailsInOneLineWithExitCodeTwoAndNoFile) {
       {"--out " + quoted(dir / "no/x.png"), "cannot write"},
       {"--out " + quoted(dir / "x.exr"), "8-bit PNG"},
       {"--diff nope --out " + png, "unknown model 'nope'"},
+      {"--models 'log,lobe: c^' --out " + png, "--models 'lobe: c^': column 9: "},
+      {"--diff 'lobe: c^*n' --out " + png, "--diff 'lobe: c^*n': column 9: "},
       {"-p q=3 --out " + png, "--param q"},
       {"--models ggx -p n=3 --out " + png, "--param n"},
       {"-p n=-1 --out " + png, "out of range"},

@@ -350,6 +350,23 @@ std::string error_of(const auto& f) {
   return "no error";
 }
 
+// The sample counts' check names the field by key, spelled as the interface that asks spells it:
+// the CLI checks --samples with it before it renders.
+TEST(EnvironmentErrors, TheSampleCheckSpellsItsFieldAsAsked) {
+  const auto message = [](Spelling spelling, RenderSettings size, int samples) {
+    try {
+      check_samples(size, {samples, 0}, spelling);
+    } catch (const InvalidField& e) {
+      return e.field() + ": " + e.what();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(Spelling::option, {4, 4}, 1), "no error");  // control
+  EXPECT_EQ(message(Spelling::option, {4, 4}, 0), "samples: --samples 0 is outside [1, 65536]");
+  EXPECT_EQ(message(Spelling::key, {4, 4}, 0), "samples: samples 0 is outside [1, 65536]");
+  EXPECT_THAT(message(Spelling::option, {1024, 1024}, 65), HasSubstr("pixels with --samples 65 is"));
+}
+
 TEST(EnvironmentErrors, LightsSampleCountsAndBadMapPixelsAreRefused) {
   const Scene bare = bare_scene(make_model("ggx"));
   const Environment white = Environment::uniform({1, 1, 1});
@@ -358,7 +375,7 @@ TEST(EnvironmentErrors, LightsSampleCountsAndBadMapPixelsAreRefused) {
   };
   EXPECT_EQ(render(bare, {4, 4}, 1), "no error");  // control
   EXPECT_THAT(render(default_scene(make_model("ggx")), {4, 4}, 1), HasSubstr("no other lights"));
-  EXPECT_THAT(render(bare, {4, 4}, 0), HasSubstr("--samples 0 is outside [1, 65536]"));
+  EXPECT_EQ(render(bare, {4, 4}, 0), "samples 0 is outside [1, 65536]");  // by its key, as a library names it
   EXPECT_THAT(render(bare, {4, 4}, 65537), HasSubstr("outside"));
   EXPECT_THAT(render(bare, {1024, 1024}, 65), HasSubstr("more than the 2^26"));
   EXPECT_THAT(render(bare, {256, 256}, 1025), HasSubstr("more than the 2^26"));

@@ -25,6 +25,7 @@ using json = nlohmann::json;
 using specula::testing::Answer;
 using specula::testing::get;
 using specula::testing::post;
+using specula::testing::post_json;
 using ::testing::HasSubstr;
 
 class ServeApi : public specula::testing::ServerSuite {
@@ -265,6 +266,36 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"fit generations beyond the cap", "/api/fit", R"({"model": "log", "generations": 100001})", 400, "generations"},
         BadRequest{"fit formula size beyond the cap", "/api/fit", R"({"model": "log", "max_size": 41})", 400, "max_size"},
         BadRequest{"a body beyond 64 KiB", "/api/normalize", "{\"model\": \"log\", \"n\": [" + repeated("1", 40000) + "]}", 413, "body"}));
+
+// Errors name the request's keys, never a CLI option: a bad inline formula quotes its field, a
+// lobe without a closed form says how to ask for quadrature, a bad choice lists its names.
+TEST_F(ServeApi, ErrorsNameTheJsonKeyNotACliOption) {
+  struct Case {
+    std::string path;
+    json body;
+    std::string field;
+    std::string says;
+  };
+  const std::vector<Case> cases{
+      {"/api/eval", {{"model", "lobe: c^*n"}, {"cos", {0.5}}}, "model", "model: column 9: "},
+      {"/api/normalize", {{"model", "log"}, {"compare", "lobe: c^"}, {"n", {2}}}, "compare", "compare: column "},
+      {"/api/normalize", {{"model", "gauss"}, {"n", {20}}, {"method", "exact"}}, "method", "; use method quadrature"},
+      {"/api/normalize", {{"model", "log"}, {"method", "guess"}}, "method",
+       "method must be one of auto, exact, quadrature, both, got 'guess'"},
+      {"/api/normalize", {{"model", "log"}, {"condition", "lax"}}, "condition", "condition must be one of normal, strict"},
+      {"/api/albedo", {{"model", "ggx"}, {"method", "mc"}}, "method", "method must be one of cubature, monte-carlo"},
+      {"/api/normalize", {{"model", "log"}, {"params", {{"n", 2}}}}, "params", "give n with n, not params"}};
+  for (const Case& c : cases) {
+    const Answer a = post_json(port(), c.path, c.body);
+    EXPECT_EQ(a.status, 400) << a.body;
+    const json j = json::parse(a.body, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << a.body;
+    EXPECT_EQ(j["field"], c.field) << a.body;
+    const std::string error = j["error"].get<std::string>();
+    EXPECT_THAT(error, HasSubstr(c.says));
+    EXPECT_THAT(error, ::testing::Not(HasSubstr("--")));
+  }
+}
 
 // ---- routes, methods, files --------------------------------------------------------------------
 

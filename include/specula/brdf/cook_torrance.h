@@ -12,6 +12,9 @@ struct CookTorrance1982 {
   double m = 0.3;   ///< RMS slope m > 0
   double f0 = 1.0;  ///< reflectance at normal incidence ∈ [0, 1]; 1 gives F ≡ 1
 
+  /// The lobe's width in θ_h (radians), a scale for the analysis's integrals: the roughness.
+  double width() const noexcept { return m; }
+
   template <std::floating_point T>
   T operator()(const Vec3T<T>& n, const Vec3T<T>& l, const Vec3T<T>& v) const noexcept {
     const T nl = dot(n, l), nv = dot(n, v);
@@ -30,6 +33,9 @@ struct CookTorrance1982 {
 struct CookTorrance {
   double m = 0.3;
   double f0 = 1.0;
+
+  /// The lobe's width in θ_h (radians), a scale for the analysis's integrals: the roughness.
+  double width() const noexcept { return m; }
 
   template <std::floating_point T>
   T operator()(const Vec3T<T>& n, const Vec3T<T>& l, const Vec3T<T>& v) const noexcept {

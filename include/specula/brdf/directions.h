@@ -1,6 +1,7 @@
 #pragma once
 // Directions of docs/math.md §1: R = 2(N·L)N − L, H = (L + V)/|L + V|, and unit vectors from angles.
 #include "specula/brdf/vec3.h"
+#include "specula/lobes/portable/directions.h"
 
 namespace specula {
 
@@ -23,20 +24,9 @@ Vec3T<T> from_spherical(T theta, T phi) noexcept {
   return {s * std::cos(phi), s * std::sin(phi), std::cos(theta)};
 }
 
-/// An orthonormal frame (t, b, w) around the unit vector w.
-struct Frame {
-  Vec3 t, b, w;
-
-  explicit Frame(const Vec3& axis) noexcept : w(axis) {
-    const Vec3 helper = std::abs(w.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    t = normalized(cross(helper, w));
-    b = cross(w, t);
-  }
-  /// The direction at polar angle (cos θ, sin θ) from w and azimuth φ.
-  Vec3 to_world(double cos_theta, double sin_theta, double phi) const noexcept {
-    return t * (sin_theta * std::cos(phi)) + b * (sin_theta * std::sin(phi)) + w * cos_theta;
-  }
-};
+/// An orthonormal frame (t, b, w) around the unit vector w, and to_world(cos θ, sin θ, φ): the one
+/// the sampler's exported copy embeds (lobes/portable/directions.h).
+using Frame = radial::Frame<Vec3>;
 
 template <std::floating_point T>
 constexpr T radians(T degrees) noexcept {

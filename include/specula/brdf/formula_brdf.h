@@ -6,7 +6,9 @@
 // every full BRDF.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
+#include <numbers>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -36,6 +38,28 @@ struct FormulaBrdf {
     slots[0] = nl, slots[1] = nv, slots[2] = nh, slots[3] = vh, slots[4] = lv;
     std::copy(params.begin(), params.end(), slots.begin() + kInputs.size());
     return program->evaluate(std::span<double>(slots.data(), program->slot_names().size()));
+  }
+
+  /// The lobe's width in θ_h (radians), a scale for the analysis's integrals: the θ_h where f at
+  /// normal incidence (L = N, V at 2θ_h) first falls to half its value at θ_h = 0, to 1e-3 relative
+  /// (θ_h ∈ [1e-6, π/4]; π/4 if it never does, or if f(0) ≤ 0: no peak, whose "half" a negative f
+  /// would fall below at once).
+  double width() const noexcept {
+    constexpr double kQuarter = std::numbers::pi / 4;
+    auto f = [&](double theta_h) {
+      const double c = std::cos(theta_h), c2 = std::cos(2 * theta_h);
+      return at(1, c2, c, c, c2);
+    };
+    const double half = f(0) / 2;
+    if (!(half > 0)) return kQuarter;
+    double lo = 1e-6, hi = lo;
+    while (hi < kQuarter && !(f(hi) < half)) lo = hi, hi = std::min(hi * 1.5, kQuarter);
+    if (!(f(hi) < half)) return kQuarter;
+    while (hi - lo > 1e-3 * hi) {
+      const double mid = (lo + hi) / 2;
+      (f(mid) < half ? hi : lo) = mid;
+    }
+    return hi;
   }
 
   /// True if the formula has a min, max or abs: its kinks are unknown to the analysis, which

@@ -10,6 +10,9 @@ struct Ggx {
   double alpha = 0.3;  ///< roughness α > 0
   double f0 = 1.0;     ///< reflectance at normal incidence ∈ [0, 1]
 
+  /// The lobe's width in θ_h (radians), a scale for the analysis's integrals: the roughness.
+  double width() const noexcept { return alpha; }
+
   template <std::floating_point T>
   T operator()(const Vec3T<T>& n, const Vec3T<T>& l, const Vec3T<T>& v) const noexcept {
     const T nl = dot(n, l), nv = dot(n, v);

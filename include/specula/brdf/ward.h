@@ -17,6 +17,9 @@ struct Ward {
   double rho_s = 1.0;   ///< specular reflectance ρ_s ∈ [0, 1]
   WardVariant variant = WardVariant::ward1992;
 
+  /// The lobe's width in θ_h (radians), a scale for the analysis's integrals: the roughness.
+  double width() const noexcept { return alpha; }
+
   template <std::floating_point T>
   T operator()(const Vec3T<T>& n, const Vec3T<T>& l, const Vec3T<T>& v) const noexcept {
     const T nl = dot(n, l), nv = dot(n, v);

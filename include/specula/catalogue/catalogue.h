@@ -4,6 +4,7 @@
 // them (models/compensated.h) — and making a model from an id or an inline definition. Above
 // analysis, which builds M+ms's energy table; nothing below it looks a model up by id.
 #include <deque>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -25,12 +26,15 @@ void register_models(std::vector<ModelInfo> infos);
 /// Removes every registered model (tests).
 void clear_registered_models();
 
-/// The model `id` with the given parameters (others at their defaults), in `form` if given
-/// (lobe models only; k stays the model's own). `id` is a model's id (built-in or registered) or
-/// an inline definition, "lobe: FORMULA" or "brdf: FORMULA" (catalogue/model_file.h), whose
-/// parameters are the formula's other identifiers, each given in `params`. Throws
-/// InvalidArgument naming the problem for an unknown model or parameter, a value out of range
-/// or NaN, a form on a full BRDF, or a bad inline formula.
+/// The definition `id` names: a model's id (built-in or registered), or an inline definition,
+/// "lobe: FORMULA" or "brdf: FORMULA" (catalogue/model_file.h), whose parameters are the
+/// formula's other identifiers, each defaulting to its value in `params`. Throws InvalidField
+/// "model" for an unknown id or a bad inline formula.
+std::shared_ptr<const ModelInfo> model_definition(std::string_view id, const ParamValues& params = {});
+
+/// The model `id` names (model_definition) with the given parameters (others at their defaults),
+/// in `form` if given (lobe models only; k stays the model's own). Throws InvalidField naming the
+/// field at fault: "model" (model_definition), "params" or "form" (make_model of a ModelInfo).
 Model make_model(std::string_view id, const ParamValues& params = {}, std::optional<Form> form = std::nullopt);
 
 }  // namespace specula

@@ -34,7 +34,7 @@
 namespace specula {
 
 /// The models defined in `text`, read from `filename` (named in errors and in each model's
-/// origin, "FILE:LINE").
+/// origin: OriginKind::file at "FILE:LINE").
 std::vector<ModelInfo> parse_model_file(std::string_view text, std::string_view filename);
 
 /// parse_model_file of the file at `path` (io::read_file's size cap applies).
@@ -49,7 +49,8 @@ bool is_inline_model(std::string_view id) noexcept;
 /// The model an inline definition names: its parameters are the formula's identifiers other
 /// than its inputs (c and u, or nl nv nh vh lv) and the constants, each with any finite value,
 /// defaulting to its value in `values`, or 1. A lobe is in form rv with k = 1. Throws
-/// InvalidArgument ("--model: column N: …") for a bad formula.
+/// InvalidField "model" ("column N: …", the column in `spec`) for a bad formula: the interface
+/// that asked puts the field's name before it (queries::ModelRef: "--model: column N: …").
 std::shared_ptr<const ModelInfo> inline_model(std::string_view spec, const ParamValues& values);
 
 }  // namespace specula

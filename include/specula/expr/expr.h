@@ -2,7 +2,7 @@
 // Expressions shared by symbolic regression, code generation and user-defined lobes.
 // An Expression is a postfix (RPN) array of nodes over named variables: compact to copy, cheap to
 // mutate, and evaluated by a stack machine. parse() reads infix text:
-//   numbers 2, 0.5, .5, 1e-3, 2.5E+7   variables (identifiers)   + - * / ^   unary -   ( )
+//   numbers 2, 0.5, .5, 1e-3, 2.5E+7   pi   variables (identifiers)   + - * / ^   unary -   ( )
 //   log log2 exp sqrt abs sin cos acos expm1 log1p asin (one argument)   pow min max (two arguments)
 // ^ is right-associative and binds tighter than unary minus (-2^2 = -4, 2^-1 = 0.5). Function names
 // are reserved. Evaluation follows IEEE semantics (x/0 is ±inf or nan, nothing throws);
@@ -31,11 +31,31 @@ enum class Op : std::uint8_t {
 /// op; an op added after it moves this count).
 inline constexpr std::size_t kOpCount = static_cast<std::size_t>(Op::asin) + 1;
 
+/// The number an exact constant is a rational multiple of (constant snapping, docs/fit.md).
+enum class Symbol : std::uint8_t { one, pi, e, ln2, sqrt2, sqrt3 };
+inline constexpr std::size_t kSymbolCount = static_cast<std::size_t>(Symbol::sqrt3) + 1;  // sqrt3: the last
+
 struct Node {
   Op op = Op::constant;
   std::uint32_t var = 0;  // Op::variable: index into Expression::variables()
   double value = 0;       // Op::constant
+  /// Op::constant, when it is exact: value = numerator · symbol / denominator, printed so ("1 / 3",
+  /// "3 * pi / 4"); denominator 0 for a plain number. A fit holds exact constants fixed.
+  std::int16_t numerator = 0;
+  std::uint8_t denominator = 0;
+  Symbol symbol = Symbol::one;
 };
+
+/// The value of a symbol as the printed text computes it (pi and e as std::numbers has them,
+/// log(2), sqrt(2), sqrt(3) as std::log and std::sqrt).
+double symbol_value(Symbol symbol);
+
+/// The exact constant numerator · symbol / denominator (denominator ≥ 1), its value computed as
+/// its text reads: (numerator · symbol) / denominator.
+Node exact_constant(int numerator, int denominator, Symbol symbol);
+
+/// True for an exact constant.
+inline bool is_exact(const Node& node) { return node.op == Op::constant && node.denominator > 0; }
 
 /// Operands an op takes: 0 for leaves, 1 or 2 otherwise.
 int arity(Op op);
@@ -81,6 +101,7 @@ class ParseError : public InvalidArgument {
 
 /// With `variables` given, the expression has exactly those variables (in that order) and other
 /// identifiers are errors; otherwise its variables are the identifiers in order of first use.
+/// `pi` is the exact constant π unless `variables` has a variable called pi.
 Expression parse(std::string_view text, std::vector<std::string> variables = {});
 
 /// Parsing nests at most this deep (parentheses, unary minus, exponents).

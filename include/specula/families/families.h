@@ -36,6 +36,12 @@ constexpr bool lobe_families_lead_in_simd_order() {
 }
 static_assert(lobe_families_lead_in_simd_order(), "kFamilies: the lobe families first, in simd::Family order");
 
+// lobe_family indexes kFamilies by simd::Family: every SIMD family but the last, formula, is one of
+// the lobe families that lead kFamilies (checked in order above).
+static_assert(static_cast<std::size_t>(simd::Family::formula) == kLobeFamilyCount &&
+                  simd::kFamilyCount == kLobeFamilyCount + 1 && kLobeFamilyCount <= kFamilies.size(),
+              "kFamilies: one lobe family per simd::Family but formula");
+
 /// The lobe family whose SIMD kernels are `family`. Precondition: family ≠ simd::Family::formula.
 constexpr const Family& lobe_family(simd::Family family) noexcept { return *kFamilies[static_cast<std::size_t>(family)]; }
 

@@ -18,11 +18,13 @@
 
 namespace specula::fit {
 
-/// The error a formula is ranked by. Constants are fitted in least squares either way (weighted by
-/// 1/y² for mean_relative); r2 is reported as R² and ranked by 1 − R².
-enum class Metric { rms, mae, max_abs, mean_relative, r2 };
+/// The error a formula is ranked by: RMS, mean absolute, maximum absolute |f − y|, maximum
+/// relative |f − y|/|y|, mean relative, or R² (reported as R², ranked by 1 − R²). Constants are
+/// fitted in least squares (weighted by 1/y² for the relative errors); for max_abs and max_rel the
+/// least-squares fit is then refined for the maximum error itself (minimax, docs/fit.md).
+enum class Metric { rms, mae, max_abs, max_rel, mean_relative, r2 };
 inline constexpr std::size_t kMetricCount = static_cast<std::size_t>(Metric::r2) + 1;  // r2: the last
-Metric parse_metric(std::string_view name);  // "rms", "mae", "max-abs", "mean-relative", "r2"
+Metric parse_metric(std::string_view name);  // "rms", "mae", "max-abs", "max-rel", "mean-relative", "r2"
 std::string_view metric_name(Metric metric);
 
 /// The metric as a loss, lower is better: 1 − R² for r2, the metric itself otherwise.
@@ -80,15 +82,18 @@ std::string_view choice_name(Choice choice);
 /// InvalidArgument. Within them memory stays below ~2 GiB (populations, per-island caches and
 /// the enumeration are bounded) and every loop of the search looks at the time budget, the
 /// cancel flag and a stop request at least every few thousand formula evaluations.
+/// An option out of its range is InvalidField named by its key (max_size, islands, population,
+/// enumerate_size, threads), the name the server's fit request gives it too.
 struct OptionRanges {
-  static constexpr int max_size = 100;            ///< --max-size in [1, 100]
-  static constexpr int islands = 64;              ///< --islands in [1, 64]
-  static constexpr int population = 20'000;       ///< --population in [4, 20000]
-  static constexpr int enumerate_size = 30;       ///< --enumerate-size in [0, 30]
+  static constexpr int max_size = 100;            ///< max_size in [1, 100]
+  static constexpr int islands = 64;              ///< islands in [1, 64]
+  static constexpr int population = 20'000;       ///< population in [4, 20000]
+  static constexpr int enumerate_size = 30;       ///< enumerate_size (enumerate_max_size) in [0, 30]
   static constexpr int enumerate_limit = 1'000'000;
-  static constexpr int threads = 1024;            ///< --threads in [0, 1024]
-  static constexpr double time_s = 1e6;           ///< --time in (0, 1e6] seconds
+  static constexpr int threads = 1024;            ///< threads in [0, 1024]
+  static constexpr double time_s = 1e6;           ///< time_limit_s in (0, 1e6] seconds
   static constexpr std::size_t rows = 1'000'000;  ///< data rows
+  static constexpr double snap_tolerance = 1;     ///< snap_tolerance in (0, 1]
 };
 
 struct Options {
@@ -111,8 +116,13 @@ struct Options {
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
+  /// Constant snapping (docs/fit.md): each front formula's constants tried as simple numbers (0,
+  /// integers, p/q with q ≤ 12, p·s/q for s = π, e, ln 2, √2, √3), each kept where the error rises by
+  /// at most snap_tolerance of itself (or stays below the target error or rounding).
+  bool snap = true;
+  double snap_tolerance = 0.01;  ///< in (0, 1]
   /// When set, the search stops at its next budget check (within an enumeration chunk, a
-  /// population or a generation) with stopped_by "cancelled" and the front found so far. The
+  /// population or a generation) with stopped_by cancelled and the front found so far. The
   /// calling thread's work limit (specula/interrupt) counts too: its cancel flag as a cancel, its
   /// deadline as the time budget. A process-wide stop request throws Interrupted.
   const std::atomic<bool>* cancel = nullptr;
@@ -141,13 +151,20 @@ struct Progress {
   const std::vector<Candidate>* front = nullptr;
 };
 
+/// What stopped a search: its time budget, its generation or evaluation budget, a formula as
+/// accurate as the target error, or a cancel.
+enum class StopReason { time, generations, evaluations, target_error, cancelled };
+inline constexpr std::size_t kStopReasonCount = static_cast<std::size_t>(StopReason::cancelled) + 1;  // cancelled: the last
+/// "time", "generations", "evaluations", "target error" or "cancelled".
+std::string_view to_string(StopReason reason);
+
 struct Result {
   std::vector<Candidate> front;  // ascending size, each more accurate on the training rows
   std::size_t chosen = 0;        // index into front
   std::int64_t evaluations = 0;  // formulas whose constants were fitted and error measured
   std::int64_t generations = 0;
   double seconds = 0;
-  std::string stopped_by;  // "time", "generations", "evaluations", "target error", "cancelled"
+  StopReason stopped_by = StopReason::time;
 };
 
 /// Throws InvalidArgument on bad data or options (each message names the problem).
@@ -158,7 +175,8 @@ Result search(const Data& data, const Options& options,
 std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice,
                    double factor, double target_rms);
 
-/// `e` with every constant rounded to `digits` significant digits, for display.
+/// `e` with every constant rounded to `digits` significant digits, for display (an exact constant,
+/// 1/3 or π/4, stays as it is).
 expr::Expression rounded(const expr::Expression& e, int digits);
 
 }  // namespace specula::fit

@@ -62,7 +62,7 @@ std::array<float, 4> model_params(const Model& model);
 std::string param_name(const ModelInfo& info, const ParamInfo& p);
 
 /// Whether the model's GLSL has k as a literal — a coefficient given in place of the model's own
-/// (Model::with_coef), or a user lobe's k by quadrature — rather than computing it from the
+/// (Model::coef_overridden), or a user lobe's k by quadrature — rather than computing it from the
 /// parameters: such a k holds at the model's parameter values only.
 bool coef_is_baked(const Model& model);
 

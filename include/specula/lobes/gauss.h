@@ -11,6 +11,7 @@ struct Gauss {
 
   /// Max error: (4 + 1.5 n θ²) ulp relative for c ∈ (0, 1], n ∈ (0, 1e9]: the exponent's rounding,
   /// amplified where F is already tiny. F = 0 at c ≤ 0.
+  static constexpr ScalarErrorBound kMaxError{.ulps = 4, .ulps_per_n_theta2 = 1.5};
   T operator()(T c) const noexcept {
     const T theta = std::acos(clamp_cos(c));
     return c > T(0) ? std::exp(-n * theta * theta / T(2)) : T(0);
@@ -25,6 +26,9 @@ struct Gauss {
     return theta < std::numbers::pi_v<T> / 2 ? -std::log(std::cos(theta)) : kInfinity<T>;
   }
   T support_log_cos() const noexcept { return kInfinity<T>; }
+  /// The same lobe in lane type U.
+  template <std::floating_point U>
+  constexpr Gauss<U> as() const noexcept { return {U(n)}; }
 };
 
 }  // namespace specula::lobes

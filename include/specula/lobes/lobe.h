@@ -7,6 +7,8 @@
 //   T at_log_cos(T u)           F at u = −ln c ≥ 0, exact for narrow lobes where 1 − c underflows
 //   T half_max_log_cos()        the u where F falls to ½: the lobe's width, a scale for integrals
 //   T support_log_cos()         the u beyond which F = 0 (+∞ if none)
+//   L<U> as<U>()                the same lobe in lane type U
+//   kMaxError                   its stated max error (ScalarErrorBound), which its test enforces
 // Evaluation is header-only, allocation-free and noexcept: fit for a renderer's inner loop.
 #include <algorithm>
 #include <cmath>
@@ -53,5 +55,26 @@ constexpr T clamp_cos(T c) noexcept {
 
 template <std::floating_point T>
 inline constexpr T kInfinity = std::numeric_limits<T>::infinity();
+
+/// A scalar lobe's stated max error against the exact F, as data (each lobe's kMaxError, which its
+/// test enforces): |F − F_exact| ≤ (ulps + ulps_per_n_theta2 · n θ²) · ε · F_exact + abs, with ε the
+/// type's machine epsilon, θ = acos c, and abs = abs_double or abs_float by the type.
+struct ScalarErrorBound {
+  double ulps = 0;
+  double ulps_per_n_theta2 = 0;  ///< growth where the exponent's rounding is amplified (Gauss)
+  double abs_double = 0;
+  double abs_float = 0;
+
+  template <std::floating_point T>
+  T allowed(T n, T c, T exact) const noexcept {
+    T ulps_here = T(ulps);
+    if (ulps_per_n_theta2 != 0) {
+      const T theta = std::acos(clamp_cos(c));
+      ulps_here += T(ulps_per_n_theta2) * n * theta * theta;
+    }
+    const T abs = std::is_same_v<T, float> ? T(abs_float) : T(abs_double);
+    return ulps_here * std::numeric_limits<T>::epsilon() * exact + abs;
+  }
+};
 
 }  // namespace specula::lobes

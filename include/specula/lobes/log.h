@@ -12,6 +12,7 @@ struct Log {
 
   /// Max error: 8 ulp relative + 4e-16 absolute (double), 8 ulp + 2e-7 absolute (float), for
   /// c ∈ [0, 1], n ∈ [1e-3, 1e9]; the absolute part is where F cancels towards 0 near c₀.
+  static constexpr ScalarErrorBound kMaxError{.ulps = 8, .abs_double = 4e-16, .abs_float = 2e-7};
   T operator()(T c) const noexcept {
     const T f = T(1) - T(0.5) * std::log2(T(1) - n * std::log2(clamp_cos(c)));
     return std::max(f, T(0));
@@ -24,6 +25,9 @@ struct Log {
   T support_log_cos() const noexcept { return T(3) * std::numbers::ln2_v<T> / n; }
   /// c₀ = 2^(−3/n), the cosine below which F = 0.
   T cutoff_cos() const noexcept { return std::exp2(T(-3) / n); }
+  /// The same lobe in lane type U.
+  template <std::floating_point U>
+  constexpr Log<U> as() const noexcept { return {U(n)}; }
 };
 
 }  // namespace specula::lobes

@@ -15,6 +15,7 @@
 
 #include "specula/brdf/full_brdf.h"
 #include "specula/brdf/lobe_brdf.h"
+#include "specula/exceptions.h"
 #include "specula/lobes/lobes.h"
 #include "specula/models/compensated.h"
 
@@ -35,6 +36,7 @@ struct ParamInfo {
 };
 
 enum class ModelKind { lobe, brdf };
+inline constexpr std::size_t kModelKindCount = static_cast<std::size_t>(ModelKind::brdf) + 1;  // brdf: the last
 
 /// How a lobe model's k is defined.
 enum class Normalization {
@@ -43,6 +45,7 @@ enum class Normalization {
   formula,     ///< k from a published formula, exact or not (e.g. the paper's fit)
   quadrature   ///< k = 1 / (albedo at normal incidence), by quadrature (user-defined lobes)
 };
+inline constexpr std::size_t kNormalizationCount = static_cast<std::size_t>(Normalization::quadrature) + 1;
 
 const char* to_string(ModelKind kind) noexcept;
 const char* to_string(Normalization normalization) noexcept;
@@ -55,6 +58,35 @@ struct LobeModel {
 };
 
 using ModelImpl = std::variant<LobeModel, FullBrdf, Compensated>;
+
+/// Where a model is defined.
+enum class OriginKind {
+  builtin,         ///< a built-in family (families/)
+  file,            ///< a model file (catalogue/model_file.h)
+  inline_formula,  ///< an inline definition, "lobe: FORMULA" or "brdf: FORMULA"
+  request          ///< a definition object in a server request
+};
+inline constexpr std::size_t kOriginKindCount = static_cast<std::size_t>(OriginKind::request) + 1;  // request: the last
+
+/// "built-in", "file", "inline" or "request" ("" outside the enum).
+constexpr const char* to_string(OriginKind kind) noexcept {
+  switch (kind) {
+    case OriginKind::builtin: return "built-in";
+    case OriginKind::file: return "file";
+    case OriginKind::inline_formula: return "inline";
+    case OriginKind::request: return "request";
+  }
+  return "";
+}
+static_assert(names_complete<OriginKind, kOriginKindCount>([](OriginKind k) { return to_string(k); }));
+
+struct ModelOrigin {
+  OriginKind kind = OriginKind::builtin;
+  std::string file_line;  ///< a model file's "FILE:LINE" (kind file only)
+};
+
+/// What messages, comments and `models --json` show: the model file's "FILE:LINE", else the kind.
+std::string to_string(const ModelOrigin& origin);
 
 struct ModelInfo {
   std::string id;
@@ -70,11 +102,10 @@ struct ModelInfo {
   std::function<ModelImpl(std::span<const double> values)> make;
   /// A user lobe's k as a formula in the parameters (normalization = formula), for code generators.
   std::shared_ptr<const expr::Program> coef_program;
-  /// Where the model is defined: "built-in", or the model file ("my.toml:3") or "inline".
-  std::string origin = "built-in";
+  ModelOrigin origin;  ///< where the model is defined
 
   const ParamInfo* find_param(std::string_view name) const noexcept;
-  bool is_builtin() const noexcept { return origin == "built-in"; }
+  bool is_builtin() const noexcept { return origin.kind == OriginKind::builtin; }
 };
 
 using ParamValues = std::map<std::string, double, std::less<>>;
@@ -103,6 +134,8 @@ class Model {
   /// The same lobe model with coefficient k (e.g. k = 1 for the bare lobe, or a strict k).
   /// Throws InvalidArgument for a full BRDF or a k that is not finite and > 0.
   Model with_coef(double k) const;
+  /// Whether a lobe model's k is not its own: with_coef gave another (false for a full BRDF).
+  bool coef_overridden() const noexcept { return is_lobe() && coef() != own_coef_; }
   /// k·F(c): the BRDF's value as a function of its form's cosine.
   double at_cos(double c) const noexcept { return coef() * lobes::eval(lobe(), c); }
 
@@ -131,11 +164,27 @@ class Model {
   std::shared_ptr<const ModelInfo> info_;
   std::vector<double> values_;
   ModelImpl impl_;
+  double own_coef_ = 1;  ///< a lobe model's k as its definition made it
+};
+
+/// make_model's error about one parameter (unknown, out of range, NaN): InvalidField "params"
+/// that names the parameter, so that an interface that takes a parameter under a key of its own
+/// (normalize's n) can name that key.
+class InvalidParameter : public InvalidField {
+ public:
+  InvalidParameter(std::string param, const std::string& message)
+      : InvalidField("params", message), param_(std::move(param)) {}
+  const std::string& param() const noexcept { return param_; }
+
+ private:
+  std::string param_;
 };
 
 /// The model `info` defines, with the given parameters (others at their defaults), in `form` if
-/// given (lobe models only; k stays the model's own). Throws InvalidArgument naming the problem
-/// for an unknown parameter, a value out of range or NaN, or a form on a full BRDF. By id:
+/// given (lobe models only; k stays the model's own). Throws InvalidField naming the field at
+/// fault: InvalidParameter ("params") for an unknown parameter or a value out of range or NaN,
+/// "form" for a form on a full BRDF, and for a definition that cannot be made at these values
+/// (a user lobe's k not finite and > 0) "params" when parameters are given, else "model". By id:
 /// catalogue/catalogue.h.
 Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& params = {},
                  std::optional<Form> form = std::nullopt);

@@ -2,6 +2,10 @@
 // How a model family is importance-sampled (docs/sampling.md): the method each family states in its
 // header (families/family.h, `sampling`), read by sampling::Sampler. Vocabulary, below the
 // families: the samplers themselves are in sampling/.
+#include <cstddef>
+
+#include "specula/exceptions.h"
+
 namespace specula::sampling {
 
 enum class Method {
@@ -20,6 +24,7 @@ enum class Method {
   /// Cosine-weighted over the hemisphere (Lambert).
   cosine,
 };
+inline constexpr std::size_t kMethodCount = static_cast<std::size_t>(Method::cosine) + 1;  // cosine: the last
 
 constexpr const char* to_string(Method method) noexcept {
   switch (method) {
@@ -30,7 +35,8 @@ constexpr const char* to_string(Method method) noexcept {
     case Method::ggx_visible_normals: return "GGX visible normals (Heitz 2018)";
     case Method::cosine: return "cosine-weighted";
   }
-  return "?";
+  return "";
 }
+static_assert(names_complete<Method, kMethodCount>([](Method m) { return to_string(m); }));
 
 }  // namespace specula::sampling

@@ -15,20 +15,16 @@
 #include <vector>
 
 #include "specula/analysis/check.h"
+#include "specula/exceptions.h"
 #include "specula/fit/fit.h"
+#include "specula/glsl/glsl.h"
 #include "specula/io/table.h"
 #include "specula/models/model.h"
 
 namespace specula::queries {
 
-/// How an interface names a field in its messages.
-enum class Spelling {
-  option,  ///< the CLI: "theta_i" → "--theta-i", "params" → "--param"
-  key      ///< the server: the JSON key itself
-};
-
-/// `key` as `spelling` spells it.
-std::string spelled(std::string_view key, Spelling spelling);
+using specula::Spelling;  // how an interface spells a field's key (exceptions.h)
+using specula::spelled;
 
 /// A model as a request names it: an id or an inline definition ("lobe: …", "brdf: …"), or a
 /// definition of the request's own, held here only (never registered, never looked up by id).
@@ -41,7 +37,12 @@ class ModelRef {
   bool empty() const noexcept { return !definition_ && id_.empty(); }
   /// The id, or the definition's own id: what output metadata calls the model.
   std::string_view name() const noexcept { return definition_ ? std::string_view(definition_->id) : id_; }
-  /// make_model of the id or of the definition.
+  /// Whether the id is an inline definition ("lobe: …"), whose errors quote a column of it.
+  bool is_inline() const noexcept;
+  /// The request's definition, or model_definition of the id (InvalidField "model"): an inline
+  /// definition's parameters default to their values in `params`.
+  std::shared_ptr<const ModelInfo> definition(const ParamValues& params = {}) const;
+  /// make_model of the id or of the definition (InvalidField "model", "params" or "form").
   Model make(const ParamValues& params = {}, std::optional<Form> form = std::nullopt) const;
 
  private:
@@ -58,16 +59,17 @@ struct ModelSpec {
   std::optional<double> coef;
 };
 
-/// The model; InvalidField "model" (unknown id), "form" (a form for a full BRDF), "params"
-/// (unknown parameter, value out of range) or "coef" (not > 0, or a full BRDF).
+/// The model, made once; InvalidField "model" (unknown id, bad inline formula), "form" (a form for
+/// a full BRDF), "params" (unknown parameter, value out of range) or "coef" (not > 0, or a full
+/// BRDF).
 Model make(const ModelSpec& spec, Spelling spelling);
 
 /// "rv" or "nh" as a Form; InvalidField "form" otherwise.
 Form form_named(std::string_view text, Spelling spelling);
 
-/// The lobe model `ref` at exponent n, other parameters from `params`. InvalidField `field` when
-/// `ref` is unknown or a full BRDF (`command` names what needs a lobe), "params" for a bad
-/// parameter, "n" for an n out of the model's range.
+/// The lobe model `ref` at exponent n, other parameters from `params`, made once. InvalidField
+/// `field` when `ref` is unknown or a full BRDF (`command` names what needs a lobe), "params" for
+/// a bad parameter, "n" for an n out of the model's range (or a model without n).
 Model lobe_model_at(std::string_view field, std::string_view command, const ModelRef& ref,
                     ParamValues params, double n, std::optional<Form> form, Spelling spelling);
 
@@ -86,14 +88,50 @@ io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const
 
 // ---- normalize ---------------------------------------------------------------------------------
 
+/// How normalize finds k: the closed form where known, else quadrature (automatic); the closed
+/// form only; quadrature only; or both, side by side.
+enum class NormalizeMethod { automatic, exact, quadrature, both };
+inline constexpr std::size_t kNormalizeMethodCount = static_cast<std::size_t>(NormalizeMethod::both) + 1;  // both: the last
+
+/// "auto", "exact", "quadrature" or "both" ("" outside the enum).
+constexpr const char* to_string(NormalizeMethod method) noexcept {
+  switch (method) {
+    case NormalizeMethod::automatic: return "auto";
+    case NormalizeMethod::exact: return "exact";
+    case NormalizeMethod::quadrature: return "quadrature";
+    case NormalizeMethod::both: return "both";
+  }
+  return "";
+}
+static_assert(names_complete<NormalizeMethod, kNormalizeMethodCount>([](NormalizeMethod m) { return to_string(m); }));
+
+/// What k makes 1: the albedo at normal incidence (the paper's), or the largest albedo over θ_i.
+enum class Condition { normal, strict };
+inline constexpr std::size_t kConditionCount = static_cast<std::size_t>(Condition::strict) + 1;  // strict: the last
+
+/// "normal" or "strict" ("" outside the enum).
+constexpr const char* to_string(Condition condition) noexcept {
+  switch (condition) {
+    case Condition::normal: return "normal";
+    case Condition::strict: return "strict";
+  }
+  return "";
+}
+static_assert(names_complete<Condition, kConditionCount>([](Condition c) { return to_string(c); }));
+
+/// The method named `text`; InvalidField "method" otherwise.
+NormalizeMethod normalize_method_named(std::string_view text, Spelling spelling);
+/// The condition named `text`; InvalidField "condition" otherwise.
+Condition condition_named(std::string_view text, Spelling spelling);
+
 struct NormalizeQuery {
   ModelRef model;
   ParamValues params;              ///< every parameter but n
   std::optional<Form> form;
   std::vector<double> n;           ///< empty: the model's default n
-  std::string method = "auto";     ///< auto | exact | quadrature | both
+  NormalizeMethod method = NormalizeMethod::automatic;
   ModelRef compare;                ///< another lobe model, or empty
-  std::string condition = "normal";  ///< normal | strict
+  Condition condition = Condition::normal;
   double step = 1;                 ///< the strict condition's θ_i grid step, [0.01, 45] degrees
 };
 
@@ -102,9 +140,26 @@ io::Table normalize_table(const NormalizeQuery& query, Spelling spelling);
 
 // ---- albedo ------------------------------------------------------------------------------------
 
+/// How albedo integrates: deterministic adaptive cubature, or importance-sampled Monte Carlo.
+enum class AlbedoMethod { cubature, monte_carlo };
+inline constexpr std::size_t kAlbedoMethodCount = static_cast<std::size_t>(AlbedoMethod::monte_carlo) + 1;  // monte_carlo: the last
+
+/// "cubature" or "monte-carlo" ("" outside the enum).
+constexpr const char* to_string(AlbedoMethod method) noexcept {
+  switch (method) {
+    case AlbedoMethod::cubature: return "cubature";
+    case AlbedoMethod::monte_carlo: return "monte-carlo";
+  }
+  return "";
+}
+static_assert(names_complete<AlbedoMethod, kAlbedoMethodCount>([](AlbedoMethod m) { return to_string(m); }));
+
+/// The method named `text`; InvalidField "method" otherwise.
+AlbedoMethod albedo_method_named(std::string_view text, Spelling spelling);
+
 struct AlbedoQuery {
   std::vector<double> theta_deg;     ///< each in [0, 90)
-  std::string method = "cubature";   ///< cubature | monte-carlo
+  AlbedoMethod method = AlbedoMethod::cubature;
   std::uint64_t samples = 1'000'000;  ///< monte-carlo: per angle, [1, 1e9]
   std::uint64_t seed = 1;
 };
@@ -156,9 +211,12 @@ fit::Data normalization_data(const ModelSpec& spec, std::span<const double> n, s
 
 // ---- glsl and models ---------------------------------------------------------------------------
 
-/// The model as a self-contained GLSL function with a comment saying how to call it
-/// (`specula glsl`). InvalidField "dialect" unless glsl330, gles300 or webgl2.
-std::string glsl_function(const Model& model, std::string_view dialect, Spelling spelling);
+/// The dialect named `text` (glsl::parse_dialect); InvalidField "dialect" otherwise.
+glsl::Dialect dialect_named(std::string_view text);
+
+/// The model as a self-contained GLSL function in `dialect` with a comment saying how to call it
+/// (`specula glsl`).
+std::string glsl_function(const Model& model, glsl::Dialect dialect);
 
 /// Every model as a JSON array: id, name, kind, summary, source, parameters with their ranges,
 /// and form, normalization and coef formula for lobe models.

@@ -76,6 +76,11 @@ struct EnvironmentSettings {
   std::uint64_t seed = 0;  ///< the pixel's random numbers depend on (seed, pixel index) alone
 };
 
+/// InvalidField "samples" for samples outside [1, kMaxEnvironmentSamples] or beyond
+/// kMaxEnvironmentImageSamples at `size`, the field spelled as `spelling` says (render_environment
+/// checks with Spelling::key; an interface checks first to name its own option).
+void check_samples(const RenderSettings& size, const EnvironmentSettings& settings, Spelling spelling);
+
 /// The linear radiance image of `scene` lit by `environment` alone (the scene's lights must be
 /// empty). Per pixel, the nearest surface along the ray through its centre shows
 ///   L_o(V) = ambient·ρ_d + ∫ L_env(ω) (ρ_s f(N, ω, V) + ρ_d/π) cos θ_ω vis(ω) dω,

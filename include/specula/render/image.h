@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "specula/exceptions.h"
+
 namespace specula::render {
 
 /// Linear RGB: a radiance, an irradiance or a reflectance per channel.
@@ -42,9 +44,17 @@ class Image {
 };
 
 enum class ToneMap { none, aces };
+inline constexpr std::size_t kToneMapCount = static_cast<std::size_t>(ToneMap::aces) + 1;  // aces: the last
 
-/// "none" or "aces".
-const char* to_string(ToneMap tone_map) noexcept;
+/// "none" or "aces" ("" outside the enum).
+constexpr const char* to_string(ToneMap tone_map) noexcept {
+  switch (tone_map) {
+    case ToneMap::none: return "none";
+    case ToneMap::aces: return "aces";
+  }
+  return "";
+}
+static_assert(names_complete<ToneMap, kToneMapCount>([](ToneMap t) { return to_string(t); }));
 
 /// How linear radiance becomes a display value: scaled by 2^exposure, then tone-mapped.
 struct Display {

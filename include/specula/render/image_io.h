@@ -19,6 +19,17 @@ namespace specula::render {
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 enum class ExrPixel { half, float32 };
+inline constexpr std::size_t kExrPixelCount = static_cast<std::size_t>(ExrPixel::float32) + 1;  // float32: the last
+
+/// "half" or "float" ("" outside the enum).
+constexpr const char* to_string(ExrPixel pixel) noexcept {
+  switch (pixel) {
+    case ExrPixel::half: return "half";
+    case ExrPixel::float32: return "float";
+  }
+  return "";
+}
+static_assert(names_complete<ExrPixel, kExrPixelCount>([](ExrPixel p) { return to_string(p); }));
 
 /// 8-bit sRGB through `display` (see to_srgb8), one tEXt chunk per metadata entry (iTXt when
 /// the value is not ASCII).

@@ -1,10 +1,25 @@
 #pragma once
 // The CPU renderer: one primary ray through each pixel centre, local shading (docs/math.md §5,
 // Figs. 10-11), shadow rays where the scene can shadow itself.
+#include "specula/exceptions.h"
 #include "specula/render/image.h"
 #include "specula/render/scene.h"
 
 namespace specula::render {
+
+/// What renders an image: this CPU renderer, or OpenGL through EGL (specula/gl).
+enum class Backend { cpu, gl };
+inline constexpr std::size_t kBackendCount = static_cast<std::size_t>(Backend::gl) + 1;  // gl: the last
+
+/// "cpu" or "gl" ("" outside the enum).
+constexpr const char* to_string(Backend backend) noexcept {
+  switch (backend) {
+    case Backend::cpu: return "cpu";
+    case Backend::gl: return "gl";
+  }
+  return "";
+}
+static_assert(names_complete<Backend, kBackendCount>([](Backend b) { return to_string(b); }));
 
 struct RenderSettings {
   int width = 512;

@@ -1,0 +1,29 @@
+#pragma once
+// Algebraic simplification of an Expression (docs/fit.md, "Simplification"): constants folded,
+// sums and products flattened, like terms collected (x + a·x → (1 + a)·x), equal factors merged
+// into powers (x·x → x², √x·√x → x), x − x, x/x, x·1, x + 0 and double negation removed, and the
+// terms and factors put in one canonical order, so that two ways of writing the same formula
+// become the same expression. Subtraction and division are written back where a term is negative
+// or a factor has a negative power (a + −b prints as a − b).
+//
+// The rewrites are the algebra of the reals: where they change the domain (x/x → 1 at x = 0,
+// √x·√x → x at x < 0) or the rounding, the simplified expression can differ from the original.
+// That is what agrees_on() is for: a caller keeps a simplified formula only where it evaluates
+// the same on its data. simplify() always terminates: a bounded number of passes, each linear in
+// the expression's size up to the sorting of sums and products.
+#include <span>
+
+#include "specula/expr/expr.h"
+
+namespace specula::expr {
+
+/// `e` simplified (same variables, in the same order).
+Expression simplify(const Expression& e);
+
+/// True if `a` and `b` (same variables) evaluate within `tolerance` relative of each other on
+/// every row of `columns` (columns[i][r] is variable i in row r): |a − b| ≤ tolerance·max(|a|, |b|)
+/// (or both are the same non-finite value). An empty row set agrees.
+bool agrees_on(const Expression& a, const Expression& b, std::span<const std::span<const double>> columns,
+               double tolerance = 1e-12);
+
+}  // namespace specula::expr

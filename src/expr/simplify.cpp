@@ -1,0 +1,419 @@
+// specula::expr::simplify (include/specula/expr/simplify.h). The postfix expression becomes a tree
+// whose sums and products hold any number of operands; each is rewritten bottom-up into a
+// canonical form (a sum: terms in key order, then its constant; a product: its coefficient, then
+// factors base^exponent in key order), and the tree is written back as postfix.
+#include "specula/expr/simplify.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <fmt/format.h>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace specula::expr {
+namespace {
+
+struct Tree {
+  Op op = Op::constant;
+  double value = 0;        ///< Op::constant
+  std::uint32_t var = 0;   ///< Op::variable
+  std::vector<Tree> kids;  ///< add and mul: two or more; other ops: their arity
+  Node leaf{};             ///< a leaf as it came: an exact constant keeps its form while unchanged
+};
+
+Tree constant(double value) { return {Op::constant, value, 0, {}, Node{Op::constant, 0, value}}; }
+
+/// The node a leaf is written as: its own while its value is unchanged (an exact constant stays
+/// exact), else a plain one.
+Node leaf_node(const Tree& t) {
+  if (t.leaf.op == t.op && std::bit_cast<std::uint64_t>(t.leaf.value) == std::bit_cast<std::uint64_t>(t.value)) return t.leaf;
+  return Node{t.op, t.var, t.value};
+}
+
+/// −c for a constant, exact if c was.
+Tree negated_constant(const Tree& c) {
+  Tree out = constant(-c.value);
+  if (is_exact(leaf_node(c))) {
+    out.leaf = leaf_node(c);
+    out.leaf.numerator = static_cast<std::int16_t>(-out.leaf.numerator);
+    out.leaf.value = -out.leaf.value;
+  }
+  return out;
+}
+bool is_constant(const Tree& t) { return t.op == Op::constant; }
+bool is_constant(const Tree& t, double value) { return is_constant(t) && t.value == value; }
+
+Tree from_postfix(std::span<const Node> nodes) {
+  std::vector<Tree> stack;
+  for (const Node& node : nodes) {
+    Tree t{node.op, node.value, node.var, {}, node};
+    const auto operands = static_cast<std::size_t>(arity(node.op));
+    t.kids.assign(std::make_move_iterator(stack.end() - static_cast<std::ptrdiff_t>(operands)),
+                  std::make_move_iterator(stack.end()));
+    stack.resize(stack.size() - operands);
+    stack.push_back(std::move(t));
+  }
+  return std::move(stack.back());
+}
+
+/// A text that is equal for equal trees (constants by their bits): the canonical order's key.
+void append_key(const Tree& t, std::string& key) {
+  key += static_cast<char>('A' + static_cast<int>(t.op));
+  if (t.op == Op::constant) key += fmt::format("{:x}", std::bit_cast<std::uint64_t>(t.value));
+  if (t.op == Op::variable) key += fmt::format("{}", t.var);
+  if (t.kids.empty()) return;
+  key += '(';
+  for (const Tree& kid : t.kids) {
+    append_key(kid, key);
+    key += ',';
+  }
+  key += ')';
+}
+
+std::string key_of(const Tree& t) {
+  std::string key;
+  append_key(t, key);
+  return key;
+}
+
+void sort_by_key(std::vector<Tree>& trees) {
+  std::vector<std::pair<std::string, Tree>> keyed;
+  for (Tree& t : trees) keyed.emplace_back(key_of(t), std::move(t));
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  trees.clear();
+  for (auto& [key, t] : keyed) trees.push_back(std::move(t));
+}
+
+void append_postfix(const Tree& t, std::vector<Node>& out) {
+  for (const Tree& kid : t.kids) append_postfix(kid, out);
+  out.push_back(t.kids.empty() ? leaf_node(t) : Node{t.op, t.var, t.value});
+}
+
+/// The value of an op over constant operands, as evaluate() computes it (nullopt if not finite).
+std::optional<double> folded(const Tree& t) {
+  std::vector<Node> nodes;
+  append_postfix(t, nodes);
+  const double value = evaluate(Expression(std::move(nodes), {}), {});
+  if (!std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Canonical sums and products
+
+Tree product(std::vector<Tree> factors);
+Tree sum(std::vector<Tree> terms);
+
+/// base^exponent, with the exponent a constant.
+Tree power(Tree base, double exponent) {
+  if (exponent == 0) return constant(1);
+  if (exponent == 1) return base;
+  if (base.op == Op::mul && exponent == std::round(exponent)) {  // (c·x)^k = c^k·x^k for whole k
+    std::vector<Tree> factors;
+    for (Tree& factor : base.kids) factors.push_back(power(std::move(factor), exponent));
+    return product(std::move(factors));
+  }
+  if (base.op == Op::pow && is_constant(base.kids[1])) {
+    const double inner = base.kids[1].value;
+    return power(std::move(base.kids[0]), inner * exponent);
+  }
+  Tree t{Op::pow, 0, 0, {std::move(base), constant(exponent)}};
+  if (is_constant(t.kids[0])) {
+    if (const auto value = folded(t)) return constant(*value);
+  }
+  return t;
+}
+
+/// −t. A negated sum is spread over its terms (product, below): −(a + b) = −a − b costs no node
+/// and puts the terms where like terms meet them; another coefficient stays outside its sum
+/// (2·(x + y) is smaller than 2·x + 2·y).
+Tree negated(Tree t) { return product({constant(-1), std::move(t)}); }
+
+/// A factor as base^exponent (exponent 1 for a factor that is no power).
+std::pair<Tree, double> base_and_exponent(Tree factor) {
+  if (factor.op == Op::pow && is_constant(factor.kids[1])) return {std::move(factor.kids[0]), factor.kids[1].value};
+  return {std::move(factor), 1.0};
+}
+
+struct Power {
+  std::string key;
+  Tree base;
+  double exponent;
+};
+
+Tree product(std::vector<Tree> factors) {
+  std::vector<Tree> flat;
+  for (Tree& f : factors) {
+    if (f.op == Op::mul) std::move(f.kids.begin(), f.kids.end(), std::back_inserter(flat));
+    else flat.push_back(std::move(f));
+  }
+  double coefficient = 1;
+  std::optional<Tree> lone_constant;  // the coefficient as it came, while it is one factor
+  int constants = 0;
+  std::vector<Power> powers;
+  for (Tree& f : flat) {
+    if (is_constant(f)) {
+      coefficient *= f.value;
+      if (++constants == 1) lone_constant = f;
+      continue;
+    }
+    auto [base, exponent] = base_and_exponent(std::move(f));
+    std::string key = key_of(base);
+    const auto same = std::find_if(powers.begin(), powers.end(), [&](const Power& p) { return p.key == key; });
+    if (same != powers.end()) same->exponent += exponent;
+    else powers.push_back({std::move(key), std::move(base), exponent});
+  }
+  if (coefficient == 0 || !std::isfinite(coefficient)) return constant(coefficient == 0 ? 0.0 : coefficient);
+  std::vector<Tree> kept;
+  for (Power& p : powers) {
+    Tree factor = power(std::move(p.base), p.exponent);
+    if (is_constant(factor)) coefficient *= factor.value;
+    else kept.push_back(std::move(factor));
+  }
+  if (kept.empty()) return constants == 1 && lone_constant->value == coefficient ? std::move(*lone_constant) : constant(coefficient);
+  if (coefficient == -1 && kept.size() == 1 && kept.front().op == Op::add) {  // −(a − b) = b − a
+    std::vector<Tree> terms;
+    for (Tree& term : kept.front().kids) terms.push_back(negated(std::move(term)));
+    return sum(std::move(terms));
+  }
+  sort_by_key(kept);
+  const bool as_it_came = constants == 1 && lone_constant->value == coefficient;
+  if (coefficient != 1) kept.insert(kept.begin(), as_it_came ? std::move(*lone_constant) : constant(coefficient));
+  if (kept.size() == 1) return std::move(kept.front());
+  return {Op::mul, 0, 0, std::move(kept)};
+}
+
+/// A term as coefficient · rest (coefficient 1 for a term without one).
+std::pair<Tree, Tree> coefficient_and_rest(Tree term) {
+  if (term.op != Op::mul || !is_constant(term.kids.front())) return {constant(1), std::move(term)};
+  Tree coefficient = std::move(term.kids.front());
+  term.kids.erase(term.kids.begin());
+  if (term.kids.size() == 1) return {std::move(coefficient), std::move(term.kids.front())};
+  return {std::move(coefficient), std::move(term)};
+}
+
+/// Like terms: their rest, the sum of their coefficients, and the coefficient as it came while
+/// there is one term (an exact coefficient stays exact).
+struct Like {
+  std::string key;
+  Tree rest;
+  double coefficient;
+  Tree lone;
+  int terms;
+};
+
+Tree sum(std::vector<Tree> terms) {
+  std::vector<Tree> flat;
+  for (Tree& t : terms) {
+    if (t.op == Op::add) std::move(t.kids.begin(), t.kids.end(), std::back_inserter(flat));
+    else flat.push_back(std::move(t));
+  }
+  double constant_part = 0;
+  std::optional<Tree> lone_constant;
+  int constants = 0;
+  std::vector<Like> likes;
+  for (Tree& t : flat) {
+    if (is_constant(t)) {
+      constant_part += t.value;
+      if (++constants == 1) lone_constant = t;
+      continue;
+    }
+    auto [coefficient, rest] = coefficient_and_rest(std::move(t));
+    std::string key = key_of(rest);
+    const auto same = std::find_if(likes.begin(), likes.end(), [&](const Like& l) { return l.key == key; });
+    if (same != likes.end()) {
+      same->coefficient += coefficient.value;
+      ++same->terms;
+    } else {
+      const double value = coefficient.value;
+      likes.push_back({std::move(key), std::move(rest), value, std::move(coefficient), 1});
+    }
+  }
+  std::vector<Tree> kept;
+  for (Like& l : likes) {
+    if (l.coefficient == 0) continue;
+    kept.push_back(product({l.terms == 1 ? std::move(l.lone) : constant(l.coefficient), std::move(l.rest)}));
+  }
+  sort_by_key(kept);
+  if (constant_part != 0 || kept.empty())
+    kept.push_back(constants == 1 && lone_constant->value == constant_part ? std::move(*lone_constant) : constant(constant_part));
+  if (kept.size() == 1) return std::move(kept.front());
+  return {Op::add, 0, 0, std::move(kept)};
+}
+
+Tree canonical(Tree t) {
+  for (Tree& kid : t.kids) kid = canonical(std::move(kid));
+  const bool all_constant = !t.kids.empty() && std::all_of(t.kids.begin(), t.kids.end(), [](const Tree& k) { return is_constant(k); });
+  if (all_constant && t.op != Op::add && t.op != Op::mul) {
+    if (const auto value = folded(t)) return constant(*value);
+  }
+  switch (t.op) {
+    case Op::constant:
+    case Op::variable: return t;
+    case Op::add: return sum(std::move(t.kids));
+    case Op::sub: return sum({std::move(t.kids[0]), negated(std::move(t.kids[1]))});
+    case Op::mul: return product(std::move(t.kids));
+    case Op::div: return product({std::move(t.kids[0]), power(std::move(t.kids[1]), -1)});
+    case Op::neg: return negated(std::move(t.kids[0]));
+    case Op::sqrt: return power(std::move(t.kids[0]), 0.5);
+    case Op::pow:
+      if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value);
+      return t;
+    case Op::min:
+    case Op::max:
+    case Op::log:
+    case Op::log2:
+    case Op::exp:
+    case Op::abs:
+    case Op::sin:
+    case Op::cos:
+    case Op::acos:
+    case Op::expm1:
+    case Op::log1p:
+    case Op::asin: return t;
+  }
+  unreachable();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Back to postfix: subtraction for negative terms, division for negative powers
+
+void write(const Tree& t, std::vector<Node>& out);
+
+/// The magnitude of a term whose sign is negative (a constant below 0, or a product whose
+/// coefficient is), and whether it was negative.
+std::pair<Tree, bool> magnitude(Tree term) {
+  if (is_constant(term) && term.value < 0) return {negated_constant(term), true};
+  if (term.op == Op::mul && is_constant(term.kids.front()) && term.kids.front().value < 0) {
+    term.kids.front() = negated_constant(term.kids.front());
+    if (is_constant(term.kids.front(), 1)) term.kids.erase(term.kids.begin());
+    if (term.kids.size() == 1) return {std::move(term.kids.front()), true};
+    return {std::move(term), true};
+  }
+  return {std::move(term), false};
+}
+
+void write_sum(const Tree& t, std::vector<Node>& out) {
+  std::vector<std::pair<Tree, bool>> terms;
+  for (const Tree& kid : t.kids) terms.push_back(magnitude(kid));
+  // Lead with a positive term where there is one: x − 1, not −1 + x.
+  const auto first = std::find_if(terms.begin(), terms.end(), [](const auto& term) { return !term.second; });
+  if (first != terms.end()) std::rotate(terms.begin(), first, first + 1);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    write(terms[i].first, out);
+    if (i == 0) {
+      if (terms[i].second) out.push_back({Op::neg, 0, 0});
+      continue;
+    }
+    out.push_back({terms[i].second ? Op::sub : Op::add, 0, 0});
+  }
+}
+
+/// base^exponent for exponent > 0: base, sqrt(base) or pow(base, exponent).
+void write_power(const Tree& base, double exponent, std::vector<Node>& out) {
+  write(base, out);
+  if (exponent == 1) return;
+  if (exponent == 0.5) {
+    out.push_back({Op::sqrt, 0, 0});
+    return;
+  }
+  out.push_back({Op::constant, 0, exponent});
+  out.push_back({Op::pow, 0, 0});
+}
+
+void write_product(const Tree& t, std::vector<Node>& out) {
+  std::vector<std::pair<const Tree*, double>> numerator, denominator;
+  double coefficient = 1;
+  Node coefficient_node{};
+  for (const Tree& kid : t.kids) {
+    if (is_constant(kid)) {
+      coefficient = kid.value;
+      coefficient_node = leaf_node(kid);
+      continue;
+    }
+    const bool is_power = kid.op == Op::pow && is_constant(kid.kids[1]);
+    const Tree* base = is_power ? &kid.kids[0] : &kid;
+    const double exponent = is_power ? kid.kids[1].value : 1;
+    (exponent < 0 ? denominator : numerator).emplace_back(base, std::abs(exponent));
+  }
+  // −1 · x is written −x; another coefficient keeps its sign (−2·x, one node less than −(2·x)).
+  const bool negated_once = coefficient == -1;
+  if (negated_once) coefficient = 1;
+  std::size_t written = 0;
+  if (coefficient != 1 || numerator.empty()) {
+    out.push_back(coefficient == coefficient_node.value && coefficient_node.op == Op::constant ? coefficient_node
+                                                                                              : Node{Op::constant, 0, coefficient});
+    ++written;
+  }
+  for (const auto& [base, exponent] : numerator) {
+    write_power(*base, exponent, out);
+    if (++written > 1) out.push_back({Op::mul, 0, 0});
+  }
+  for (const auto& [base, exponent] : denominator) {
+    write_power(*base, exponent, out);
+    out.push_back({Op::div, 0, 0});
+  }
+  if (negated_once) out.push_back({Op::neg, 0, 0});
+}
+
+void write(const Tree& t, std::vector<Node>& out) {
+  if (t.op == Op::add) return write_sum(t, out);
+  if (t.op == Op::mul) return write_product(t, out);
+  if (t.op == Op::pow && is_constant(t.kids[1])) return write_product({Op::mul, 0, 0, {t}}, out);
+  for (const Tree& kid : t.kids) write(kid, out);
+  out.push_back(t.kids.empty() ? leaf_node(t) : Node{t.op, t.var, t.value});
+}
+
+bool same_nodes(std::span<const Node> a, std::span<const Node> b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const Node& x, const Node& y) {
+    return x.op == y.op && x.var == y.var && std::bit_cast<std::uint64_t>(x.value) == std::bit_cast<std::uint64_t>(y.value);
+  });
+}
+
+/// How many times the canonical form is rebuilt from its own postfix: a rewrite can expose
+/// another (a factor that cancels once its sum has collected), and two passes nearly always
+/// reach the fixed point; more would be a waste, never a loop.
+constexpr int kPasses = 3;
+
+Expression simplified(const Expression& e) {
+  std::vector<Node> nodes(e.nodes().begin(), e.nodes().end());
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::vector<Node> next;
+    write(canonical(from_postfix(nodes)), next);
+    if (same_nodes(next, nodes)) break;
+    nodes = std::move(next);
+  }
+  return Expression(std::move(nodes), e.variables());
+}
+
+}  // namespace
+
+Expression simplify(const Expression& e) {
+  try {
+    return simplified(e);
+  } catch (const InvalidArgument&) {  // a folded constant overflowed: the formula is kept as it is
+    return e;
+  }
+}
+
+bool agrees_on(const Expression& a, const Expression& b, std::span<const std::span<const double>> columns,
+               double tolerance) {
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  std::vector<double> va(rows), vb(rows);
+  evaluate_batch(a, columns, va);
+  evaluate_batch(b, columns, vb);
+  for (std::size_t r = 0; r < rows; ++r) {
+    if (!std::isfinite(va[r]) || !std::isfinite(vb[r])) {
+      if (!(va[r] == vb[r]) && !(std::isnan(va[r]) && std::isnan(vb[r]))) return false;
+      continue;
+    }
+    if (std::abs(va[r] - vb[r]) > tolerance * std::max(std::abs(va[r]), std::abs(vb[r]))) return false;
+  }
+  return true;
+}
+
+}  // namespace specula::expr

@@ -1,0 +1,28 @@
+#pragma once
+// A fitted formula simplified inside the search (expr::simplify, docs/fit.md "Simplification"):
+// the population and the front hold the simplified form wherever it computes the same on the
+// training rows, so that an equal-error bloated form never occupies a size.
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "constants.h"
+#include "genome.h"
+
+namespace specula::fit {
+
+/// What a simplified formula may contain: the search's operators, plus subtraction and negation
+/// (the signs simplify writes), and constants as the search's mode allows them.
+struct SimplifyRules {
+  std::vector<expr::Op> operators;
+  Constants constants = Constants::fitted;
+  SizeWeights weights;
+};
+
+/// `g` simplified where the simplified formula differs from g, evaluates within 1e-12 relative of
+/// `predicted` (g's values) on every training row, is no larger by `rules.weights`, and is made of
+/// what `rules` allows; otherwise nothing.
+std::optional<Genome> simplified(const Genome& g, std::span<const double> predicted, const Rows& rows,
+                                 const SimplifyRules& rules);
+
+}  // namespace specula::fit

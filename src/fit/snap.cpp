@@ -1,0 +1,99 @@
+#include "snap.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace specula::fit {
+namespace {
+
+using expr::Node;
+using expr::Op;
+using expr::Symbol;
+
+constexpr int kLargestDenominator = 12;
+/// Simple numbers only: integers up to 1000, fractions p/q with |p| ≤ 100, symbols' multiples with
+/// |p| ≤ 12 (1737/2 or 123·ln 2 is no simpler than the double it would replace).
+constexpr int kLargestInteger = 1000, kLargestFractionNumerator = 100, kLargestSymbolNumerator = 12;
+/// How far from the fitted value a candidate may be: the loss decides, this only bounds the tries.
+constexpr double kWindow = 0.02;
+
+void add_candidate(std::vector<Node>& out, double value, int denominator, Symbol symbol) {
+  const double unit = expr::symbol_value(symbol) / denominator;
+  const double numerator = std::round(value / unit);
+  const int largest = symbol != Symbol::one ? kLargestSymbolNumerator
+                      : denominator == 1    ? kLargestInteger
+                                            : kLargestFractionNumerator;
+  if (numerator == 0 || std::abs(numerator) > largest) return;
+  const Node candidate = expr::exact_constant(int(numerator), denominator, symbol);
+  if (std::abs(candidate.value - value) > kWindow * std::abs(value)) return;
+  for (const Node& seen : out)
+    if (seen.value == candidate.value) return;  // 2/4 is 1/2, already tried
+  out.push_back(candidate);
+}
+
+}  // namespace
+
+std::vector<Node> snap_candidates(double value) {
+  std::vector<Node> out{expr::exact_constant(0, 1, Symbol::one)};
+  if (!std::isfinite(value)) return out;
+  for (int q = 1; q <= kLargestDenominator; ++q) add_candidate(out, value, q, Symbol::one);
+  for (std::size_t s = 1; s < expr::kSymbolCount; ++s)
+    for (int q = 1; q <= kLargestDenominator; ++q) add_candidate(out, value, q, static_cast<Symbol>(s));
+  return out;
+}
+
+Snapped refitted(Genome g, const Rows& rows, const SnapSettings& settings) {
+  // Exact constants become extra columns of their value, so fit_constants leaves them alone.
+  Rows held = rows;
+  std::vector<std::vector<double>> values;
+  std::vector<std::pair<std::size_t, Node>> exact;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (!expr::is_exact(g[i])) continue;
+    exact.emplace_back(i, g[i]);
+    values.emplace_back(rows.size(), g[i].value);
+    g[i] = Node{Op::variable, static_cast<std::uint32_t>(rows.columns.size() + values.size() - 1), 0};
+  }
+  for (const auto& column : values) held.columns.emplace_back(column);
+  const std::vector<double> predicted = fit_constants(g, held, settings.constants);
+  for (const auto& [i, node] : exact) g[i] = node;
+  double loss = to_loss(settings.metric, measure(settings.metric, predicted, rows.target));
+  if (std::isnan(loss)) loss = std::numeric_limits<double>::infinity();
+  return {std::move(g), loss};
+}
+
+/// The loss of `g` as it is, constants unchanged.
+Snapped evaluated(const Genome& g, const Rows& rows, const SnapSettings& settings) {
+  std::vector<std::string> names(rows.columns.size(), "v");
+  for (std::size_t v = 0; v < names.size(); ++v) names[v] += std::to_string(v);
+  std::vector<double> predicted(rows.size());
+  expr::evaluate_batch(expr::Expression(g, names), rows.columns, predicted);
+  double loss = to_loss(settings.metric, measure(settings.metric, predicted, rows.target));
+  if (std::isnan(loss)) loss = std::numeric_limits<double>::infinity();
+  return {g, loss};
+}
+
+Snapped snapped(const Genome& g, const Rows& rows, const SnapSettings& settings) {
+  Snapped current = evaluated(g, rows, settings);
+  if (settings.constants == Constants::none) return current;
+  const double allowed = std::max(current.loss * (1 + settings.tolerance), settings.floor);
+  int refits_left = settings.max_refits;
+  for (std::size_t i = 0; i < current.genome.size() && refits_left > 0; ++i) {
+    if (current.genome[i].op != Op::constant || expr::is_exact(current.genome[i])) continue;
+    for (const Node& candidate : snap_candidates(current.genome[i].value)) {
+      if (settings.constants == Constants::integer && candidate.denominator > 1) continue;
+      if (settings.constants == Constants::integer && candidate.symbol != Symbol::one) continue;
+      if (--refits_left < 0 || settings.stop()) return current;
+      Genome trial = current.genome;
+      trial[i] = candidate;
+      Snapped tried = refitted(std::move(trial), rows, settings);
+      if (tried.loss <= allowed && settings.acceptable(tried.genome)) {
+        current = std::move(tried);
+        break;
+      }
+    }
+  }
+  return current;
+}
+
+}  // namespace specula::fit

@@ -1,0 +1,89 @@
+// src/fit/snap.h: constants snapped to simple numbers where the loss allows, the others refitted;
+// a constant the data does not make simple stays as fitted.
+#include "fit/snap.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "specula/expr/expr.h"
+#include "specula/expr/simplify.h"
+
+namespace specula::fit {
+namespace {
+
+struct Data1 {
+  std::vector<double> x, y;
+  Rows rows;
+
+  template <class F>
+  Data1(double lo, double hi, int count, F f) {
+    for (int i = 0; i < count; ++i) {
+      x.push_back(lo + (hi - lo) * i / (count - 1));
+      y.push_back(f(x.back()));
+    }
+    rows.columns = {x};
+    rows.target = y;
+  }
+};
+
+Genome genome(const char* text) {
+  const expr::Expression e = expr::parse(text, {"x"});
+  return {e.nodes().begin(), e.nodes().end()};
+}
+
+std::string text(const Genome& g) { return expr::to_infix(expr::simplify(expr::Expression(g, {"x"}))); }
+
+/// What the search passes: rounding (1e-13 of the target's scale here) as the floor.
+SnapSettings rounding() {
+  SnapSettings s;
+  s.floor = 1e-13;
+  return s;
+}
+
+TEST(SnapCandidates, TrySimpleNumbersSimplestFirst) {
+  const auto candidates = snap_candidates(0.3333333333333334);
+  ASSERT_GE(candidates.size(), 2u);
+  EXPECT_EQ(candidates[0].value, 0);
+  EXPECT_EQ(expr::to_infix(expr::Expression({candidates[1]}, {})), "1 / 3");
+  const auto near_pi = snap_candidates(3 * std::numbers::pi);
+  bool has_three_pi = false;
+  for (const auto& c : near_pi) has_three_pi |= c.symbol == expr::Symbol::pi && c.numerator == 3 && c.denominator == 1;
+  EXPECT_TRUE(has_three_pi);
+}
+
+TEST(Snapped, TheBloatedFitReadsWithAThirdAndThreePi) {
+  const Data1 d(0, 4, 41, [](double x) { return x * x / 3 + std::numbers::pi * x; });
+  const Genome g = genome("(9.424777960769376 + x) * 0.3333333333333334 * x");
+  const Snapped s = snapped(g, d.rows, rounding());
+  EXPECT_EQ(text(s.genome), "1 / 3 * x * (x + 3 * pi)");
+  EXPECT_LT(s.loss, 1e-12);
+}
+
+TEST(Snapped, AGarbageTermSnapsToZeroAndIsSimplifiedAway) {
+  const Data1 d(0.1, 1.4, 30, [](double x) { return 2 * x; });
+  const Snapped s = snapped(genome("2.0000000000000004 * x - 8.99e-16 / cos(x)"), d.rows, rounding());
+  EXPECT_EQ(text(s.genome), "2 * x");
+}
+
+TEST(Snapped, AConstantTheDataDoesNotMakeSimpleStays) {
+  const Data1 d(0, 1, 21, [](double x) { return 1.05 * x; });
+  const Snapped s = snapped(genome("1.05 * x"), d.rows, rounding());
+  EXPECT_EQ(text(s.genome), "1.05 * x");
+}
+
+TEST(Snapped, TheToleranceDecides) {
+  // y = 0.999 x: 1 costs 0.1 % of y, far more than 1 % of the (zero) error; a floor above that
+  // error lets it through.
+  const Data1 d(0, 1, 21, [](double x) { return 0.999 * x; });
+  EXPECT_EQ(text(snapped(genome("0.999 * x"), d.rows, rounding()).genome), "0.999 * x");
+  SnapSettings loose = rounding();
+  loose.floor = 1e-2;
+  EXPECT_EQ(text(snapped(genome("0.999 * x"), d.rows, loose).genome), "x");
+}
+
+}  // namespace
+}  // namespace specula::fit
