@@ -127,8 +127,9 @@ Fragment negation(const Fragment& operand) {
 /// power that leads with one); empty otherwise. a + −X and a − X compute the same in IEEE
 /// arithmetic, sign for sign, so a sum writes "a - X" (and a difference "a + X").
 std::string without_leading_minus(const Fragment& f) {
-  const bool signed_term =
-      f.precedence >= kProduct && f.text.size() > 1 && f.text[0] == '-' && f.text[1] != ' ' && f.text[1] != '-';
+  // Not "-(…)": the magnitude would keep parentheses that reading it back drops.
+  const bool signed_term = f.precedence >= kProduct && f.text.size() > 1 && f.text[0] == '-' && f.text[1] != ' ' &&
+                           f.text[1] != '-' && f.text[1] != '(';
   return signed_term ? f.text.substr(1) : std::string();
 }
 
