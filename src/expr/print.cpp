@@ -72,6 +72,9 @@ struct ExactTexts {
 /// there is no operator: "-pi", "pi", "3").
 Fragment exact(const Node& node, const ExactTexts& texts) {
   const int p = std::abs(int(node.numerator)), q = node.denominator;
+  // Halves, quarters, fifths, eighths and tenths read best as the decimals they are: 0.5, 0.25.
+  if (node.symbol == Symbol::one && (q == 2 || q == 4 || q == 5 || q == 8 || q == 10))
+    return signed_number(node.value, texts.number(std::abs(node.value)));
   const std::string_view symbol = texts.symbols[static_cast<std::size_t>(node.symbol)];
   std::string text;
   int precedence = kAtom;

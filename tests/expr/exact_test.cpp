@@ -39,6 +39,8 @@ TEST(Exact, EveryPrinterWritesTheFraction) {
   EXPECT_EQ(to_latex(quarter_pi), "\\frac{3\\pi}{4}");
   EXPECT_EQ(to_glsl(quarter_pi), "3.0 * 3.1415927 / 4.0");
   EXPECT_EQ(to_infix(alone(exact_constant(1, 1, Symbol::e))), "exp(1)");
+  EXPECT_EQ(to_infix(alone(exact_constant(1, 2, Symbol::one))), "0.5");
+  EXPECT_EQ(to_cpp(alone(exact_constant(-3, 4, Symbol::one))), "-0.75");
   EXPECT_EQ(to_infix(alone(exact_constant(-1, 2, Symbol::sqrt3))), "-sqrt(3) / 2");
 }
 
