@@ -368,12 +368,6 @@ void write(const Tree& t, std::vector<Node>& out) {
   out.push_back(t.kids.empty() ? leaf_node(t) : Node{t.op, t.var, t.value});
 }
 
-bool same_nodes(std::span<const Node> a, std::span<const Node> b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const Node& x, const Node& y) {
-    return x.op == y.op && x.var == y.var && std::bit_cast<std::uint64_t>(x.value) == std::bit_cast<std::uint64_t>(y.value);
-  });
-}
-
 /// How many times the canonical form is rebuilt from its own postfix: a rewrite can expose
 /// another (a factor that cancels once its sum has collected), and two passes nearly always
 /// reach the fixed point; more would be a waste, never a loop.
@@ -400,20 +394,30 @@ Expression simplify(const Expression& e) {
   }
 }
 
+bool same_nodes(std::span<const Node> a, std::span<const Node> b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const Node& x, const Node& y) {
+    return x.op == y.op && x.var == y.var && std::bit_cast<std::uint64_t>(x.value) == std::bit_cast<std::uint64_t>(y.value);
+  });
+}
+
+bool values_agree(std::span<const double> a, std::span<const double> b, double tolerance) {
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    if (!std::isfinite(a[r]) || !std::isfinite(b[r])) {
+      if (!(a[r] == b[r]) && !(std::isnan(a[r]) && std::isnan(b[r]))) return false;
+      continue;
+    }
+    if (std::abs(a[r] - b[r]) > tolerance * std::max(std::abs(a[r]), std::abs(b[r]))) return false;
+  }
+  return true;
+}
+
 bool agrees_on(const Expression& a, const Expression& b, std::span<const std::span<const double>> columns,
                double tolerance) {
   const std::size_t rows = columns.empty() ? 0 : columns.front().size();
   std::vector<double> va(rows), vb(rows);
   evaluate_batch(a, columns, va);
   evaluate_batch(b, columns, vb);
-  for (std::size_t r = 0; r < rows; ++r) {
-    if (!std::isfinite(va[r]) || !std::isfinite(vb[r])) {
-      if (!(va[r] == vb[r]) && !(std::isnan(va[r]) && std::isnan(vb[r]))) return false;
-      continue;
-    }
-    if (std::abs(va[r] - vb[r]) > tolerance * std::max(std::abs(va[r]), std::abs(vb[r]))) return false;
-  }
-  return true;
+  return values_agree(va, vb, tolerance);
 }
 
 }  // namespace specula::expr

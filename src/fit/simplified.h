@@ -4,6 +4,7 @@
 // training rows, so that an equal-error bloated form never occupies a size.
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "constants.h"
@@ -18,6 +19,9 @@ struct SimplifyRules {
   Constants constants = Constants::fitted;
   SizeWeights weights;
 };
+
+/// Names v0, v1, … for the variables of a genome seen as an expr::Expression.
+std::vector<std::string> slot_names(std::size_t count);
 
 /// `g` simplified where the simplified formula differs from g, evaluates within 1e-12 relative of
 /// `predicted` (g's values) on every training row, is no larger by `rules.weights`, and is made of

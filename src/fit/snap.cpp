@@ -1,5 +1,7 @@
 #include "snap.h"
 
+#include "simplified.h"
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -64,10 +66,8 @@ Snapped refitted(Genome g, const Rows& rows, const SnapSettings& settings) {
 
 /// The loss of `g` as it is, constants unchanged.
 Snapped evaluated(const Genome& g, const Rows& rows, const SnapSettings& settings) {
-  std::vector<std::string> names(rows.columns.size(), "v");
-  for (std::size_t v = 0; v < names.size(); ++v) names[v] += std::to_string(v);
   std::vector<double> predicted(rows.size());
-  expr::evaluate_batch(expr::Expression(g, names), rows.columns, predicted);
+  expr::evaluate_batch(expr::Expression(g, slot_names(rows.columns.size())), rows.columns, predicted);
   double loss = to_loss(settings.metric, measure(settings.metric, predicted, rows.target));
   if (std::isnan(loss)) loss = std::numeric_limits<double>::infinity();
   return {g, loss};

@@ -20,6 +20,13 @@ namespace specula::expr {
 /// `e` simplified (same variables, in the same order).
 Expression simplify(const Expression& e);
 
+/// True if a[r] and b[r] agree for every r: |a − b| ≤ tolerance·max(|a|, |b|), or both the same
+/// non-finite value.
+bool values_agree(std::span<const double> a, std::span<const double> b, double tolerance = 1e-12);
+
+/// True if the two node arrays are the same, constants bit for bit.
+bool same_nodes(std::span<const Node> a, std::span<const Node> b);
+
 /// True if `a` and `b` (same variables) evaluate within `tolerance` relative of each other on
 /// every row of `columns` (columns[i][r] is variable i in row r): |a − b| ≤ tolerance·max(|a|, |b|)
 /// (or both are the same non-finite value). An empty row set agrees.
