@@ -249,6 +249,9 @@ void add_fit_command(CLI::App& app) {
   cmd->add_option("--snap-tolerance", o->search.snap_tolerance,
                   "How much a snap may raise a formula's error, relative to it, (0, 1]")
       ->capture_default_str();
+  cmd->add_option("--start", o->search.starts,
+                  "A formula to start from besides the search's own (repeatable, e.g. --start '0.5*x^2'): "
+                  "its constants are fitted from the values written; it joins the front if it earns a place");
   cmd->add_option("--format", o->format, "table | json")->capture_default_str();
   cmd->add_option("--emit", o->emit, "Print only the chosen formula as a function: cpp | glsl | latex | python");
   cmd->add_option("--out", o->out, "Write to FILE (atomically) instead of stdout");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <iterator>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -103,25 +104,109 @@ std::optional<double> folded(const Tree& t) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Exact arithmetic: constants that came exact (snapped, or structural: the −1 of a negation, the
+// 2 of x + x) combine into exact ones while one symbol at most is involved and the parts fit a
+// node (|p| ≤ 32767, q ≤ 255); a plain operand makes the result plain.
+
+Tree exact_tree(const Node& n) {
+  Tree t = constant(n.value);
+  t.leaf = n;
+  return t;
+}
+
+Tree exact_integer(int k) { return exact_tree(exact_constant(k, 1, Symbol::one)); }
+
+std::optional<Node> exact_ratio(long long p, long long q, Symbol s) {
+  if (q < 0) p = -p, q = -q;
+  if (p == 0) return exact_constant(0, 1, Symbol::one);
+  const long long common = std::gcd(p, q);
+  p /= common, q /= common;
+  if (q > 255 || std::abs(p) > 32767) return std::nullopt;
+  return exact_constant(static_cast<int>(p), static_cast<int>(q), s);
+}
+
+std::optional<Node> exact_times(const Node& a, const Node& b) {
+  if (a.symbol != Symbol::one && b.symbol != Symbol::one) return std::nullopt;
+  return exact_ratio(static_cast<long long>(a.numerator) * b.numerator, static_cast<long long>(a.denominator) * b.denominator,
+                     a.symbol != Symbol::one ? a.symbol : b.symbol);
+}
+
+std::optional<Node> exact_plus(const Node& a, const Node& b) {
+  if (a.numerator == 0) return b;
+  if (b.numerator == 0) return a;
+  if (a.symbol != b.symbol) return std::nullopt;
+  return exact_ratio(static_cast<long long>(a.numerator) * b.denominator + static_cast<long long>(b.numerator) * a.denominator,
+                     static_cast<long long>(a.denominator) * b.denominator, a.symbol);
+}
+
+/// Constants multiplied (or added) as they come: the double, and its exact form while every
+/// operand was exact.
+class Combined {
+ public:
+  explicit Combined(int identity) : value_(identity), exact_(exact_constant(identity, 1, Symbol::one)) {}
+
+  void times(const Tree& c) {
+    value_ *= c.value;
+    const Node leaf = leaf_node(c);
+    exact_ = exact_ && is_exact(leaf) ? exact_times(*exact_, leaf) : std::nullopt;
+  }
+  void plus(const Tree& c) {
+    value_ += c.value;
+    const Node leaf = leaf_node(c);
+    exact_ = exact_ && is_exact(leaf) ? exact_plus(*exact_, leaf) : std::nullopt;
+  }
+  double value() const { return value_; }
+  /// As a constant tree: the exact form where there is one (its value as its text reads).
+  Tree tree() const { return exact_ ? exact_tree(*exact_) : constant(value_); }
+
+ private:
+  double value_;
+  std::optional<Node> exact_;
+};
+
+// ---------------------------------------------------------------------------------------------
 // Canonical sums and products
 
 Tree product(std::vector<Tree> factors);
 Tree sum(std::vector<Tree> terms);
+bool reads_negative(const Tree& t);
 
-/// base^exponent, with the exponent a constant.
-Tree power(Tree base, double exponent) {
+/// An exponent as a constant node: exact (a fit holds it fixed) when every exponent it came from
+/// was — x·x = x^2, 1/x = x^-1, √x = x^0.5, or exact ones written so — and it is a fraction p/q
+/// with q ≤ 12; else a plain constant, as free as the fitted exponent it came from.
+Tree exponent_constant(double value, bool exact) {
+  Tree t = constant(value);
+  if (!exact) return t;
+  for (int q = 1; q <= 12; ++q) {
+    const double p = value * q;
+    if (p != std::round(p) || std::abs(p) > 1000) continue;
+    t.leaf = exact_constant(static_cast<int>(p), q, Symbol::one);
+    t.value = t.leaf.value;
+    break;
+  }
+  return t;
+}
+
+bool is_exact_constant(const Tree& t) { return is_constant(t) && is_exact(leaf_node(t)); }
+
+/// base^exponent, with the exponent a constant (exact if `exact`, exponent_constant).
+Tree power(Tree base, double exponent, bool exact) {
   if (exponent == 0) return constant(1);
   if (exponent == 1) return base;
   if (base.op == Op::mul && exponent == std::round(exponent)) {  // (c·x)^k = c^k·x^k for whole k
     std::vector<Tree> factors;
-    for (Tree& factor : base.kids) factors.push_back(power(std::move(factor), exponent));
+    for (Tree& factor : base.kids) factors.push_back(power(std::move(factor), exponent, exact));
     return product(std::move(factors));
   }
-  if (base.op == Op::pow && is_constant(base.kids[1])) {
+  // (x^a)^b = x^(a·b) where both sides are defined alike: not for whole a and fractional b,
+  // where x < 0 is in the left's domain (x^2 ≥ 0) and out of the right's.
+  const auto whole = [](double v) { return v == std::round(v); };
+  if (base.op == Op::pow && is_constant(base.kids[1]) && (whole(exponent) || !whole(base.kids[1].value))) {
     const double inner = base.kids[1].value;
-    return power(std::move(base.kids[0]), inner * exponent);
+    const bool inner_exact = is_exact_constant(base.kids[1]);
+    return power(std::move(base.kids[0]), inner * exponent, exact && inner_exact);
   }
-  Tree t{Op::pow, 0, 0, {std::move(base), constant(exponent)}};
+  Tree t{Op::pow, 0, 0, {std::move(base), exponent_constant(exponent, exact)}};
   if (is_constant(t.kids[0])) {
     if (const auto value = folded(t)) return constant(*value);
   }
@@ -131,19 +216,30 @@ Tree power(Tree base, double exponent) {
 /// −t. A negated sum is spread over its terms (product, below): −(a + b) = −a − b costs no node
 /// and puts the terms where like terms meet them; another coefficient stays outside its sum
 /// (2·(x + y) is smaller than 2·x + 2·y).
-Tree negated(Tree t) { return product({constant(-1), std::move(t)}); }
+Tree negated(Tree t) { return product({exact_integer(-1), std::move(t)}); }
 
-/// A factor as base^exponent (exponent 1 for a factor that is no power).
-std::pair<Tree, double> base_and_exponent(Tree factor) {
-  if (factor.op == Op::pow && is_constant(factor.kids[1])) return {std::move(factor.kids[0]), factor.kids[1].value};
-  return {std::move(factor), 1.0};
+/// −(a + b) as −a − b, a canonical sum's terms negated one by one.
+Tree negated_terms(Tree sum_of_terms) {
+  std::vector<Tree> terms;
+  for (Tree& term : sum_of_terms.kids) terms.push_back(negated(std::move(term)));
+  return sum(std::move(terms));
 }
 
 struct Power {
   std::string key;
   Tree base;
   double exponent;
+  bool exact;
 };
+
+/// A factor as base^exponent (exponent 1, exact, for a factor that is no power).
+Power as_power(Tree factor) {
+  if (factor.op == Op::pow && is_constant(factor.kids[1])) {
+    const bool exact = is_exact_constant(factor.kids[1]);
+    return {{}, std::move(factor.kids[0]), factor.kids[1].value, exact};
+  }
+  return {{}, std::move(factor), 1.0, true};
+}
 
 Tree product(std::vector<Tree> factors) {
   std::vector<Tree> flat;
@@ -151,59 +247,59 @@ Tree product(std::vector<Tree> factors) {
     if (f.op == Op::mul) std::move(f.kids.begin(), f.kids.end(), std::back_inserter(flat));
     else flat.push_back(std::move(f));
   }
-  double coefficient = 1;
-  std::optional<Tree> lone_constant;  // the coefficient as it came, while it is one factor
-  int constants = 0;
+  Combined coefficient(1);
   std::vector<Power> powers;
   for (Tree& f : flat) {
     if (is_constant(f)) {
-      coefficient *= f.value;
-      if (++constants == 1) lone_constant = f;
+      coefficient.times(f);
       continue;
     }
-    auto [base, exponent] = base_and_exponent(std::move(f));
-    std::string key = key_of(base);
-    const auto same = std::find_if(powers.begin(), powers.end(), [&](const Power& p) { return p.key == key; });
-    if (same != powers.end()) same->exponent += exponent;
-    else powers.push_back({std::move(key), std::move(base), exponent});
+    Power factor = as_power(std::move(f));
+    factor.key = key_of(factor.base);
+    const auto same = std::find_if(powers.begin(), powers.end(), [&](const Power& p) { return p.key == factor.key; });
+    if (same != powers.end()) {
+      same->exponent += factor.exponent;
+      same->exact = same->exact && factor.exact;
+    } else {
+      powers.push_back(std::move(factor));
+    }
   }
-  if (coefficient == 0 || !std::isfinite(coefficient)) return constant(coefficient == 0 ? 0.0 : coefficient);
+  if (coefficient.value() == 0 || !std::isfinite(coefficient.value())) return coefficient.tree();
   std::vector<Tree> kept;
   for (Power& p : powers) {
-    Tree factor = power(std::move(p.base), p.exponent);
-    if (is_constant(factor)) coefficient *= factor.value;
+    // (−a − b)^k = (−1)^k·(a + b)^k for whole k: the minus joins the coefficient, where a sum
+    // above writes it as a subtraction.
+    if (p.base.op == Op::add && reads_negative(p.base) && p.exponent == std::round(p.exponent)) {
+      p.base = negated_terms(std::move(p.base));
+      if (std::fmod(p.exponent, 2) != 0) coefficient.times(exact_integer(-1));
+    }
+    Tree factor = power(std::move(p.base), p.exponent, p.exact);
+    if (is_constant(factor)) coefficient.times(factor);
     else kept.push_back(std::move(factor));
   }
-  if (kept.empty()) return constants == 1 && lone_constant->value == coefficient ? std::move(*lone_constant) : constant(coefficient);
-  if (coefficient == -1 && kept.size() == 1 && kept.front().op == Op::add) {  // −(a − b) = b − a
-    std::vector<Tree> terms;
-    for (Tree& term : kept.front().kids) terms.push_back(negated(std::move(term)));
-    return sum(std::move(terms));
-  }
+  if (kept.empty()) return coefficient.tree();
+  if (coefficient.value() == -1 && kept.size() == 1 && kept.front().op == Op::add)  // −(a − b) = b − a
+    return negated_terms(std::move(kept.front()));
   sort_by_key(kept);
-  const bool as_it_came = constants == 1 && lone_constant->value == coefficient;
-  if (coefficient != 1) kept.insert(kept.begin(), as_it_came ? std::move(*lone_constant) : constant(coefficient));
+  if (coefficient.value() != 1) kept.insert(kept.begin(), coefficient.tree());
   if (kept.size() == 1) return std::move(kept.front());
   return {Op::mul, 0, 0, std::move(kept)};
 }
 
-/// A term as coefficient · rest (coefficient 1 for a term without one).
+/// A term as coefficient · rest (an exact 1 for a term without one).
 std::pair<Tree, Tree> coefficient_and_rest(Tree term) {
-  if (term.op != Op::mul || !is_constant(term.kids.front())) return {constant(1), std::move(term)};
+  if (term.op != Op::mul || !is_constant(term.kids.front())) return {exact_integer(1), std::move(term)};
   Tree coefficient = std::move(term.kids.front());
   term.kids.erase(term.kids.begin());
   if (term.kids.size() == 1) return {std::move(coefficient), std::move(term.kids.front())};
   return {std::move(coefficient), std::move(term)};
 }
 
-/// Like terms: their rest, the sum of their coefficients, and the coefficient as it came while
-/// there is one term (an exact coefficient stays exact).
+/// Like terms: their rest and the sum of their coefficients.
 struct Like {
   std::string key;
   Tree rest;
-  double coefficient;
-  Tree lone;
-  int terms;
+  Combined coefficient;
 };
 
 Tree sum(std::vector<Tree> terms) {
@@ -212,37 +308,48 @@ Tree sum(std::vector<Tree> terms) {
     if (t.op == Op::add) std::move(t.kids.begin(), t.kids.end(), std::back_inserter(flat));
     else flat.push_back(std::move(t));
   }
-  double constant_part = 0;
-  std::optional<Tree> lone_constant;
-  int constants = 0;
+  Combined constant_part(0);
   std::vector<Like> likes;
   for (Tree& t : flat) {
     if (is_constant(t)) {
-      constant_part += t.value;
-      if (++constants == 1) lone_constant = t;
+      constant_part.plus(t);
       continue;
     }
     auto [coefficient, rest] = coefficient_and_rest(std::move(t));
     std::string key = key_of(rest);
-    const auto same = std::find_if(likes.begin(), likes.end(), [&](const Like& l) { return l.key == key; });
-    if (same != likes.end()) {
-      same->coefficient += coefficient.value;
-      ++same->terms;
-    } else {
-      const double value = coefficient.value;
-      likes.push_back({std::move(key), std::move(rest), value, std::move(coefficient), 1});
+    auto same = std::find_if(likes.begin(), likes.end(), [&](const Like& l) { return l.key == key; });
+    if (same == likes.end()) {
+      likes.push_back({std::move(key), std::move(rest), Combined(0)});
+      same = likes.end() - 1;
     }
+    same->coefficient.plus(coefficient);
   }
   std::vector<Tree> kept;
   for (Like& l : likes) {
-    if (l.coefficient == 0) continue;
-    kept.push_back(product({l.terms == 1 ? std::move(l.lone) : constant(l.coefficient), std::move(l.rest)}));
+    if (l.coefficient.value() == 0) continue;
+    kept.push_back(product({l.coefficient.tree(), std::move(l.rest)}));
   }
   sort_by_key(kept);
-  if (constant_part != 0 || kept.empty())
-    kept.push_back(constants == 1 && lone_constant->value == constant_part ? std::move(*lone_constant) : constant(constant_part));
+  if (constant_part.value() != 0 || kept.empty()) kept.push_back(constant_part.tree());
   if (kept.size() == 1) return std::move(kept.front());
   return {Op::add, 0, 0, std::move(kept)};
+}
+
+/// Whether t is written with a leading minus: a product with a negative coefficient, or a sum
+/// whose every term is so.
+bool reads_negative(const Tree& t) {
+  if (t.op == Op::mul) return is_constant(t.kids.front()) && t.kids.front().value < 0;
+  if (t.op == Op::add)
+    return std::all_of(t.kids.begin(), t.kids.end(),
+                       [](const Tree& k) { return (is_constant(k) && k.value < 0) || reads_negative(k); });
+  return false;
+}
+
+/// cos(−u) = cos(u), |−u| = |u|, sin(−u) = −sin(u): the minus leaves an even or odd function.
+Tree with_symmetry(Tree t) {
+  if (!reads_negative(t.kids[0])) return t;
+  t.kids[0] = negated(std::move(t.kids[0]));
+  return t.op == Op::sin ? negated(std::move(t)) : t;
 }
 
 Tree canonical(Tree t) {
@@ -257,20 +364,20 @@ Tree canonical(Tree t) {
     case Op::add: return sum(std::move(t.kids));
     case Op::sub: return sum({std::move(t.kids[0]), negated(std::move(t.kids[1]))});
     case Op::mul: return product(std::move(t.kids));
-    case Op::div: return product({std::move(t.kids[0]), power(std::move(t.kids[1]), -1)});
+    case Op::div: return product({std::move(t.kids[0]), power(std::move(t.kids[1]), -1, true)});
     case Op::neg: return negated(std::move(t.kids[0]));
-    case Op::sqrt: return power(std::move(t.kids[0]), 0.5);
+    case Op::sqrt: return power(std::move(t.kids[0]), 0.5, true);
     case Op::pow:
-      if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value);
+      if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value, is_exact_constant(t.kids[1]));
       return t;
+    case Op::abs:
+    case Op::sin:
+    case Op::cos: return with_symmetry(std::move(t));
     case Op::min:
     case Op::max:
     case Op::log:
     case Op::log2:
     case Op::exp:
-    case Op::abs:
-    case Op::sin:
-    case Op::cos:
     case Op::acos:
     case Op::expm1:
     case Op::log1p:
@@ -301,11 +408,19 @@ void write_sum(const Tree& t, std::vector<Node>& out) {
   std::vector<std::pair<Tree, bool>> terms;
   for (const Tree& kid : t.kids) terms.push_back(magnitude(kid));
   // Lead with a positive term where there is one: x − 1, not −1 + x.
+  // With none, lead with the negative constant where there is one: −1 − x, not −x − 1.
   const auto first = std::find_if(terms.begin(), terms.end(), [](const auto& term) { return !term.second; });
   if (first != terms.end()) std::rotate(terms.begin(), first, first + 1);
+  const auto constant_term = std::find_if(t.kids.begin(), t.kids.end(), [](const Tree& k) { return is_constant(k); });
+  const bool constant_leads = first == terms.end() && constant_term != t.kids.end();
+  if (constant_leads) {
+    const auto at = static_cast<std::size_t>(constant_term - t.kids.begin());
+    terms.erase(terms.begin() + static_cast<std::ptrdiff_t>(at));
+    out.push_back(leaf_node(*constant_term));
+  }
   for (std::size_t i = 0; i < terms.size(); ++i) {
     write(terms[i].first, out);
-    if (i == 0) {
+    if (i == 0 && !constant_leads) {
       if (terms[i].second) out.push_back({Op::neg, 0, 0});
       continue;
     }
@@ -313,20 +428,20 @@ void write_sum(const Tree& t, std::vector<Node>& out) {
   }
 }
 
-/// base^exponent for exponent > 0: base, sqrt(base) or pow(base, exponent).
-void write_power(const Tree& base, double exponent, std::vector<Node>& out) {
+/// base^exponent for a constant exponent > 0: base, sqrt(base) or pow(base, exponent).
+void write_power(const Tree& base, const Tree& exponent, std::vector<Node>& out) {
   write(base, out);
-  if (exponent == 1) return;
-  if (exponent == 0.5) {
+  if (exponent.value == 1) return;
+  if (exponent.value == 0.5) {
     out.push_back({Op::sqrt, 0, 0});
     return;
   }
-  out.push_back({Op::constant, 0, exponent});
+  out.push_back(leaf_node(exponent));
   out.push_back({Op::pow, 0, 0});
 }
 
 void write_product(const Tree& t, std::vector<Node>& out) {
-  std::vector<std::pair<const Tree*, double>> numerator, denominator;
+  std::vector<std::pair<const Tree*, Tree>> numerator, denominator;  // base, |exponent|
   double coefficient = 1;
   Node coefficient_node{};
   for (const Tree& kid : t.kids) {
@@ -337,8 +452,9 @@ void write_product(const Tree& t, std::vector<Node>& out) {
     }
     const bool is_power = kid.op == Op::pow && is_constant(kid.kids[1]);
     const Tree* base = is_power ? &kid.kids[0] : &kid;
-    const double exponent = is_power ? kid.kids[1].value : 1;
-    (exponent < 0 ? denominator : numerator).emplace_back(base, std::abs(exponent));
+    const Tree exponent = is_power ? kid.kids[1] : constant(1);
+    if (exponent.value < 0) denominator.emplace_back(base, negated_constant(exponent));
+    else numerator.emplace_back(base, exponent);
   }
   // −1 · x is written −x; another coefficient keeps its sign (−2·x, one node less than −(2·x)).
   const bool negated_once = coefficient == -1;

@@ -131,6 +131,10 @@ void push_leaf(ChunkStack& s, std::size_t slot, const Node& node, std::size_t co
     return;
   }
   std::fill_n(v, n, node.value);
+  if (expr::is_exact(node)) {  // held fixed: no derivative
+    s.depends(slot) = 0;
+    return;
+  }
   std::fill_n(s.gradient(slot, constant_index), n, 1.0);
   s.depends(slot) = std::uint64_t{1} << constant_index;
 }
@@ -162,8 +166,7 @@ void apply_op(ChunkStack& s, Op op, std::size_t a, std::size_t n) {
 void evaluate_with_gradient(std::span<const Node> nodes, const Rows& rows,
                             std::vector<double>& value, std::vector<double>& gradient) {
   const std::size_t count = rows.size();
-  const auto constants = static_cast<std::size_t>(
-      std::count_if(nodes.begin(), nodes.end(), [](const Node& n) { return n.op == Op::constant; }));
+  const auto constants = static_cast<std::size_t>(std::count_if(nodes.begin(), nodes.end(), is_free_constant));
   if (constants > kMaxConstants)
     throw InvalidArgument(fmt::format("a formula may have at most {} constants", kMaxConstants));
   value.resize(count);
@@ -176,8 +179,7 @@ void evaluate_with_gradient(std::span<const Node> nodes, const Rows& rows,
     for (const Node& node : nodes) {
       const int operands = expr::arity(node.op);
       if (operands == 0) {
-        push_leaf(s, top++, node, node.op == Op::constant ? constant_index++ : constants, rows,
-                  first, n);
+        push_leaf(s, top++, node, is_free_constant(node) ? constant_index++ : constants, rows, first, n);
       } else {
         top -= static_cast<std::size_t>(operands);
         apply_op(s, node.op, top++, n);
@@ -220,7 +222,7 @@ std::vector<bool> linear_constants(std::span<const Node> nodes) {
   std::vector<bool> chosen(nodes.size(), false);
   std::vector<bool> linear;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes[i].op != Op::constant) continue;
+    if (!is_free_constant(nodes[i])) continue;
     chosen[i] = true;
     if (!affine_in(nodes, chosen)) chosen[i] = false;
     linear.push_back(chosen[i]);
@@ -253,7 +255,7 @@ class Projection {
  public:
   Projection(Genome& g, const Rows& rows, Workspace& w) : g_(g), rows_(rows), w_(w) {
     for (std::size_t i = 0; i < g.size(); ++i)
-      if (g[i].op == Op::constant) constant_nodes_.push_back(i);
+      if (is_free_constant(g[i])) constant_nodes_.push_back(i);
     const auto linear = linear_constants(g);
     for (std::size_t k = 0; k < linear.size(); ++k) (linear[k] ? linear_ : nonlinear_).push_back(k);
     for (double y : rows.target) target_scale_ = std::max(target_scale_, std::abs(y));

@@ -2,6 +2,7 @@
 #include "genome.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <fmt/format.h>
 #include <string>
@@ -161,12 +162,14 @@ Genome perturb_constant(const Genome& g, const Alphabet& a, Rng& rng) {
     if (g[i].op == Op::constant) constants.push_back(i);
   if (constants.empty()) return change_node(g, a, rng);
   Genome out = g;
-  double& value = out[pick(constants, rng)].value;
+  Node& node = out[pick(constants, rng)];
+  double value = node.value;
   if (a.constants == Constants::integer)
     value += chance(0.5, rng) ? 1 : -1;
   else
     value = chance(0.2, rng) ? -value
                               : value * std::exp(std::normal_distribution<double>(0, 1)(rng));
+  node = Node{Op::constant, 0, value};  // an exact constant perturbed is free from then on
   return out;
 }
 
@@ -252,6 +255,8 @@ struct Canon {
 
 const Canon kConstant{Op::constant, {}, "c"};
 
+bool is_free(const Canon& c) { return c.op == Op::constant && c.key == "c"; }
+
 std::string op_symbol(Op op) { return std::string(operator_symbol(op)); }
 
 // + or × of operands: nested same-op operands flattened, constants merged into one, sorted.
@@ -266,7 +271,7 @@ Canon associative(Op op, std::initializer_list<const Canon*> operands) {
         else
           out.terms.push_back(t);
       }
-    } else if (c->op == Op::constant) {
+    } else if (is_free(*c)) {
       constant = true;
     } else {
       out.terms.push_back(c->key);
@@ -283,10 +288,10 @@ Canon associative(Op op, std::initializer_list<const Canon*> operands) {
 Canon combine(Op op, const Canon* a, const Canon* b) {
   const bool constant_a = a->op == Op::constant;
   const bool constant_b = b == nullptr || b->op == Op::constant;
-  if (constant_a && constant_b) return kConstant;
+  if (constant_a && constant_b) return kConstant;  // folded: free
   if (op == Op::add || op == Op::mul) return associative(op, {a, b});
-  if (op == Op::div && constant_b) return associative(Op::mul, {a, &kConstant});
-  if (op == Op::sub && constant_b) return associative(Op::add, {a, &kConstant});
+  if (op == Op::div && b && is_free(*b)) return associative(Op::mul, {a, &kConstant});
+  if (op == Op::sub && b && is_free(*b)) return associative(Op::add, {a, &kConstant});
   std::string key = op_symbol(op) + "(" + a->key + (b ? "," + b->key : "") + ")";
   return {op, {}, std::move(key)};
 }
@@ -298,8 +303,12 @@ std::string canonical_key(std::span<const Node> nodes) {
   for (const Node& node : nodes) {
     const int operands = expr::arity(node.op);
     if (operands == 0) {
-      stack.push_back(node.op == Op::constant ? kConstant
-                                              : Canon{Op::variable, {}, fmt::format("x{}", node.var)});
+      if (is_free_constant(node))
+        stack.push_back(kConstant);
+      else if (node.op == Op::constant)
+        stack.push_back(Canon{Op::constant, {}, fmt::format("k{:x}", std::bit_cast<std::uint64_t>(node.value))});
+      else
+        stack.push_back(Canon{Op::variable, {}, fmt::format("x{}", node.var)});
       continue;
     }
     const Canon* a = &stack[stack.size() - static_cast<std::size_t>(operands)];

@@ -16,6 +16,10 @@ namespace specula::fit {
 using Genome = std::vector<expr::Node>;
 using Rng = std::mt19937_64;
 
+/// A constant the fit adjusts: any but an exact one (expr::is_exact: 1/3, 2, the exponent of a
+/// merged power x·x = x^2), which every fit holds fixed.
+inline bool is_free_constant(const expr::Node& n) { return n.op == expr::Op::constant && !expr::is_exact(n); }
+
 /// The symbol of an operator ("+", "^", "neg") or a function's call name ("sqrt", "pow"); "" for
 /// a leaf. --ops, --size-weights and canonical keys spell operators so.
 std::string_view operator_symbol(expr::Op op);
@@ -55,7 +59,8 @@ Genome mutate(const Genome& g, const Alphabet& alphabet, Rng& rng);
 Genome folded_constants(std::span<const expr::Node> nodes);
 
 /// A key equal for formulas that are the same up to the values of their free constants,
-/// commutativity and associativity of + and ×, and x ÷ c = c′·x.
+/// commutativity and associativity of + and ×, and x ÷ c = c′·x. An exact constant is keyed by
+/// its value.
 std::string canonical_key(std::span<const expr::Node> nodes);
 
 }  // namespace specula::fit

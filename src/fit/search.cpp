@@ -67,14 +67,16 @@ struct Problem {
     return out;
   }
 
-  // A fitted constant far beyond the data's scale means the fit works by cancellation between
-  // huge terms (a line drawn as a far-off pole, n − n + c): rounding, not a formula. Such
-  // formulas stay in the populations (their offspring may be sound) but not in the front.
+  // A fit that works by cancellation: a fitted constant far beyond the data's scale (a line
+  // drawn as a far-off pole), or a sum that cancels on every row (simplified.h): rounding, not a
+  // formula. Such formulas stay in the populations (their offspring may be sound) but not in the
+  // front.
   bool cancels(const Genome& g) const {
     return std::any_of(g.begin(), g.end(), [&](const Node& n) {
       return n.op == Op::constant && std::abs(n.value) > largest_constant;
-    });
+    }) || relies_on_cancellation(g, train);
   }
+
 };
 
 // Constants may reach 1e6 times the largest magnitude in the data (or 1e6 for data within ±1).
@@ -84,6 +86,27 @@ double constant_limit(const Data& data) {
   for (const auto& column : data.columns)
     for (double x : column) scale = std::max(scale, std::abs(x));
   return 1e6 * scale;
+}
+
+// Options::starts read over the data's variables.
+std::vector<Genome> starting_formulas(const Data& data, const Options& o) {
+  if (o.starts.size() > OptionRanges::starts)
+    throw InvalidField("starts", fmt::format("{} start formulas; at most {}", o.starts.size(), OptionRanges::starts));
+  std::vector<Genome> out;
+  for (std::size_t k = 0; k < o.starts.size(); ++k) {
+    try {
+      const expr::Expression e = expr::parse(o.starts[k], data.variables);
+      Genome g(e.nodes().begin(), e.nodes().end());
+      if (o.weights.of(g) > o.max_size)
+        throw InvalidArgument(fmt::format("size {} is over max_size {}", o.weights.of(g), o.max_size));
+      if (std::count_if(g.begin(), g.end(), is_free_constant) > static_cast<std::ptrdiff_t>(kMaxConstants))
+        throw InvalidArgument(fmt::format("more than {} constants", kMaxConstants));
+      out.push_back(std::move(g));
+    } catch (const std::exception& e) {
+      throw InvalidField("starts", fmt::format("start formula {} '{}': {}", k + 1, o.starts[k], e.what()));
+    }
+  }
+  return out;
 }
 
 void validate(const Data& data, const Options& o) {
@@ -135,6 +158,7 @@ void validate(const Data& data, const Options& o) {
     throw InvalidArgument(fmt::format("the time limit must be in (0, {:g}] seconds", R::time_s));
   if (o.target_error && !(*o.target_error >= 0))
     throw InvalidArgument("the target error must be a number ≥ 0");
+  starting_formulas(data, o);
 }
 
 std::vector<std::size_t> test_rows(std::size_t rows, const Options& o) {
@@ -172,6 +196,8 @@ Problem make_problem(const Data& data, const Options& o) {
 // The best formula found of each size.
 class Archive {
  public:
+  static constexpr double kLowerBy = 1e-6;
+
   // Differences in loss below `noise` are rounding, not improvement.
   explicit Archive(double noise) : noise_(noise) {}
 
@@ -187,11 +213,13 @@ class Archive {
     const auto it = best_.find(x.size);
     if (it == best_.end() || x.loss <= it->second.loss * (1 + tolerance) + floor) best_.insert_or_assign(x.size, x);
   }
-  // Each size's best that beats every smaller one by more than rounding.
+  // Each size's best that beats every smaller one by more than rounding: by 10⁻⁶ of its error
+  // and by `noise`. (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
+  // 1105270 − 0.197243·(5603590 − n) for 0.197243·n + 0.250673.)
   std::vector<const Individual*> front() const {
     std::vector<const Individual*> out;
     for (const auto& [size, x] : best_)
-      if (out.empty() || x.loss < out.back()->loss * (1 - 1e-9) - noise_) out.push_back(&x);
+      if (out.empty() || x.loss < out.back()->loss * (1 - kLowerBy) - noise_) out.push_back(&x);
     return out;
   }
 
@@ -261,7 +289,7 @@ Individual fit_form(const Problem& p, const Genome& form) {
   if (std::find(linear.begin(), linear.end(), false) != linear.end()) {
     Genome other = form;
     for (auto& n : other)
-      if (n.op == Op::constant) n.value = -0.5;
+      if (is_free_constant(n)) n.value = -0.5;
     Individual second = p.evaluate(other, key);
     if (better(second, best)) best = std::move(second);
   }
@@ -467,7 +495,12 @@ class Search {
         archive_(rounding_noise(problem_)) {}
 
   Result run() {
-    const auto fitted = enumerate();
+    auto fitted = enumerate();
+    for (const Genome& g : starting_formulas(data_, options_)) {
+      fitted.push_back(problem_.evaluate(g, canonical_key(g)));
+      archive_.offer(fitted.back());
+      ++evaluations_;
+    }
     if (!stopped()) check_budget(false);  // e.g. a cancel asked for by the last report
     if (options_.max_generations == 0) stopped_by_ = StopReason::generations;
     if (!stopped()) evolve(fitted);

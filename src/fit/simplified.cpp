@@ -31,6 +31,30 @@ std::vector<std::string> slot_names(std::size_t count) {
   return names;
 }
 
+bool relies_on_cancellation(const Genome& g, const Rows& rows) {
+  if (std::none_of(g.begin(), g.end(), [](const expr::Node& n) { return n.op == Op::constant; })) return false;
+  const auto starts = subtree_starts(g);
+  const auto names = slot_names(rows.columns.size());
+  const double ratio = std::pow(10.0, kCancelledDigits);
+  const auto operand = [&](std::size_t root) {
+    return expr::Expression(Genome(g.begin() + static_cast<std::ptrdiff_t>(starts[root]), g.begin() + static_cast<std::ptrdiff_t>(root) + 1), names);
+  };
+  std::vector<double> row(rows.columns.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (g[i].op != Op::add && g[i].op != Op::sub) continue;
+    const std::size_t right = i - 1, left = starts[right] - 1;
+    const expr::Expression a = operand(left), b = operand(right);
+    bool everywhere = rows.size() > 0;
+    for (std::size_t r = 0; r < rows.size() && everywhere; ++r) {
+      for (std::size_t v = 0; v < row.size(); ++v) row[v] = rows.columns[v][r];
+      const double x = expr::evaluate(a, row), y = expr::evaluate(b, row);
+      everywhere = std::max(std::abs(x), std::abs(y)) > ratio * std::abs(g[i].op == Op::add ? x + y : x - y);
+    }
+    if (everywhere) return true;
+  }
+  return false;
+}
+
 std::optional<Genome> simplified(const Genome& g, std::span<const double> predicted, const Rows& rows,
                                  const SimplifyRules& rules) {
   const expr::Expression simple = expr::simplify(expr::Expression(g, slot_names(rows.columns.size())));

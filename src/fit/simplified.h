@@ -23,6 +23,14 @@ struct SimplifyRules {
 /// Names v0, v1, … for the variables of a genome seen as an expr::Expression.
 std::vector<std::string> slot_names(std::size_t count);
 
+/// The most digits a sum may lose on every row: |a ± b| below 10⁻⁴·max(|a|, |b|) at each row.
+inline constexpr double kCancelledDigits = 4;
+
+/// Whether a sum or difference in `g` with a constant below it loses more than kCancelledDigits
+/// of its operands' digits on every row (1573607.28 − 0.99999936^x · 1573606.29 for y near 1):
+/// a fit by cancellation. sin(x) − x cancels near 0 only, and 1000 + x never.
+bool relies_on_cancellation(const Genome& g, const Rows& rows);
+
 /// `g` simplified where the simplified formula differs from g, evaluates within 1e-12 relative of
 /// `predicted` (g's values) on every training row, is no larger by `rules.weights`, and is made of
 /// what `rules` allows; otherwise nothing.

@@ -17,6 +17,10 @@ constexpr int kLargestDenominator = 12;
 /// Simple numbers only: integers up to 1000, fractions p/q with |p| ≤ 100, symbols' multiples with
 /// |p| ≤ 12 (1737/2 or 123·ln 2 is no simpler than the double it would replace).
 constexpr int kLargestInteger = 1000, kLargestFractionNumerator = 100, kLargestSymbolNumerator = 12;
+/// A symbol's simple multiples: p·π/q for these q. With every q ≤ 12 the five symbols' multiples
+/// lie about 0.005 apart near 1, so that some one fits nearly any constant of a rough formula
+/// (6·e/11 for 1.4828): numerology, not a clean constant.
+constexpr int kSymbolDenominators[] = {1, 2, 3, 4, 6};
 /// How far from the fitted value a candidate may be: the loss decides, this only bounds the tries.
 constexpr double kWindow = 0.02;
 
@@ -41,24 +45,12 @@ std::vector<Node> snap_candidates(double value) {
   if (!std::isfinite(value)) return out;
   for (int q = 1; q <= kLargestDenominator; ++q) add_candidate(out, value, q, Symbol::one);
   for (std::size_t s = 1; s < expr::kSymbolCount; ++s)
-    for (int q = 1; q <= kLargestDenominator; ++q) add_candidate(out, value, q, static_cast<Symbol>(s));
+    for (int q : kSymbolDenominators) add_candidate(out, value, q, static_cast<Symbol>(s));
   return out;
 }
 
 Snapped refitted(Genome g, const Rows& rows, const SnapSettings& settings) {
-  // Exact constants become extra columns of their value, so fit_constants leaves them alone.
-  Rows held = rows;
-  std::vector<std::vector<double>> values;
-  std::vector<std::pair<std::size_t, Node>> exact;
-  for (std::size_t i = 0; i < g.size(); ++i) {
-    if (!expr::is_exact(g[i])) continue;
-    exact.emplace_back(i, g[i]);
-    values.emplace_back(rows.size(), g[i].value);
-    g[i] = Node{Op::variable, static_cast<std::uint32_t>(rows.columns.size() + values.size() - 1), 0};
-  }
-  for (const auto& column : values) held.columns.emplace_back(column);
-  const std::vector<double> predicted = fit_constants(g, held, settings.constants);
-  for (const auto& [i, node] : exact) g[i] = node;
+  const std::vector<double> predicted = fit_constants(g, rows, settings.constants, settings.metric);  // exact ones held
   double loss = to_loss(settings.metric, measure(settings.metric, predicted, rows.target));
   if (std::isnan(loss)) loss = std::numeric_limits<double>::infinity();
   return {std::move(g), loss};
@@ -77,12 +69,15 @@ Snapped snapped(const Genome& g, const Rows& rows, const SnapSettings& settings)
   Snapped current = evaluated(g, rows, settings);
   if (settings.constants == Constants::none) return current;
   const double allowed = std::max(current.loss * (1 + settings.tolerance), settings.floor);
+  // π, e, ln 2, √2 and √3 only in a formula that fits to rounding (or the target error): in a
+  // rough one, 3·ln 2/2 for a constant near 1.04 claims a structure the data do not show.
+  const bool fits_exactly = current.loss <= settings.floor;
   int refits_left = settings.max_refits;
   for (std::size_t i = 0; i < current.genome.size() && refits_left > 0; ++i) {
     if (current.genome[i].op != Op::constant || expr::is_exact(current.genome[i])) continue;
     for (const Node& candidate : snap_candidates(current.genome[i].value)) {
       if (settings.constants == Constants::integer && candidate.denominator > 1) continue;
-      if (settings.constants == Constants::integer && candidate.symbol != Symbol::one) continue;
+      if (candidate.symbol != Symbol::one && (settings.constants == Constants::integer || !fits_exactly)) continue;
       if (--refits_left < 0 || settings.stop()) return current;
       Genome trial = current.genome;
       trial[i] = candidate;

@@ -1,8 +1,10 @@
 #pragma once
 // Constant snapping (docs/fit.md, "Constant snapping"): each fitted constant of a formula is tried
-// as a simple number — 0, an integer, p/q with q ≤ 12, or p·s/q for s = π, e, ln 2, √2, √3 — the
+// as a simple number — 0, an integer, p/q with q ≤ 12, or p·s/q for s = π, e, ln 2, √2, √3 and
+// q ∈ {1, 2, 3, 4, 6} — the
 // simplest first; a snapped constant is kept (exact, expr::exact_constant, and held fixed from then
 // on) when, with the formula's other constants refitted, its error stays within the tolerance.
+// Multiples of the symbols are tried only in a formula that fits to rounding or the target error.
 #include <functional>
 #include <vector>
 
@@ -27,7 +29,8 @@ struct SnapSettings {
 };
 
 /// The simple numbers near `value` a snap tries, simplest first: 0; the nearest integer; p/q for
-/// q = 2 … 12; then p·s/q for each symbol and q = 1 … 12 — each within 2 % of `value` (0 always).
+/// q = 2 … 12; then p·s/q for each symbol and q = 1, 2, 3, 4, 6 — each within 2 % of `value` (0
+/// always).
 std::vector<expr::Node> snap_candidates(double value);
 
 struct Snapped {

@@ -38,11 +38,64 @@ TEST(Simplify, CollectsLikeTermsAndMergesPowers) {
   EXPECT_EQ(simplified("x ^ 2 * x ^ -0.5"), "x ^ 1.5");
 }
 
+// An exponent the formula's structure made is exact (a fit holds it fixed); one that came from a
+// plain constant stays plain.
+TEST(Simplify, ExponentsFromStructureAreExactOnes) {
+  const auto exponent = [](const char* text) {
+    const Expression s = simplify(parse(text, {"x"}));
+    EXPECT_EQ(s.nodes().back().op, Op::pow) << text;
+    return s.nodes()[s.size() - 2];
+  };
+  EXPECT_TRUE(is_exact(exponent("x * x")));
+  EXPECT_EQ(exponent("x * x").value, 2);
+  EXPECT_TRUE(is_exact(exponent("x * x * x / sqrt(x)")));
+  EXPECT_EQ(exponent("x * x * x / sqrt(x)").value, 2.5);
+  EXPECT_FALSE(is_exact(exponent("x ^ 2.5 * x")));  // negative control: 2.5 was a plain constant
+  EXPECT_EQ(exponent("x ^ 2.5 * x").value, 3.5);
+  const Expression held(std::vector<Node>{{Op::variable, 0, 0}, exact_constant(3, 1, Symbol::one), {Op::pow, 0, 0},
+                                          {Op::variable, 0, 0}, {Op::mul, 0, 0}},
+                        {"x"});
+  const Expression merged = simplify(held);  // x^3 (exact) · x = x^4, exact
+  EXPECT_TRUE(is_exact(merged.nodes()[1]));
+  EXPECT_EQ(merged.nodes()[1].value, 4);
+}
+
+// (x^2)^0.5 is |x|, not x: whole inner exponent, fractional outer one, kept apart.
+TEST(Simplify, KeepsPowersOfPowersApartWhereTheDomainsDiffer) {
+  const Expression e = parse("(x ^ 2) ^ 0.5", {"x"});
+  EXPECT_EQ(evaluate(simplify(e), std::vector<double>{-2.0}), 2);
+  EXPECT_EQ(to_infix(simplify(parse("(x ^ 0.5) ^ 2", {"x"}))), "x");
+  EXPECT_EQ(to_infix(simplify(parse("(x ^ 2) ^ 3", {"x"}))), "x ^ 6");
+}
+
+TEST(Simplify, TakesTheMinusOutOfEvenAndOddFunctions) {
+  EXPECT_EQ(simplified("cos(-x)"), "cos(x)");
+  EXPECT_EQ(simplified("cos(-x - y)"), "cos(x + y)");
+  EXPECT_EQ(simplified("abs(-2 * x)"), "abs(2 * x)");
+  EXPECT_EQ(simplified("sin(-x) * y"), "-(y * sin(x))");
+  EXPECT_EQ(simplified("cos(x - y)"), "cos(x - y)");  // negative control: not every term is negative
+}
+
+// Exact constants combine into exact ones: −(−π/2) is π/2, x + x is 2·x with an exact 2.
+TEST(Simplify, ExactConstantsStayExact) {
+  const Node half_pi = exact_constant(-1, 2, Symbol::pi);
+  const Expression negated(std::vector<Node>{{Op::variable, 0, 0}, half_pi, {Op::sub, 0, 0}}, {"x"});  // x − (−π/2)
+  EXPECT_EQ(to_infix(simplify(negated)), "x + pi / 2");
+  const Expression twice = simplify(parse("x + x", {"x"}));
+  ASSERT_EQ(to_infix(twice), "2 * x");
+  EXPECT_TRUE(is_exact(twice.nodes()[0]));
+  // Negative control: a plain constant makes the sum plain.
+  const Expression plain = simplify(parse("x + 1.5 * x", {"x"}));
+  EXPECT_FALSE(is_exact(plain.nodes()[0]));
+}
+
 TEST(Simplify, WritesSubtractionAndDivisionBack) {
   EXPECT_EQ(simplified("x + -1 * y"), "x - y");
   EXPECT_EQ(simplified("x + -2 * y"), "x - 2 * y");
   EXPECT_EQ(simplified("x * y ^ -1"), "x / y");
   EXPECT_EQ(simplified("-1 + x"), "x - 1");
+  EXPECT_EQ(simplified("-x - 1"), "-1 - x");  // a negative constant leads where no term is positive
+  EXPECT_EQ(simplified("-x - y"), "-x - y");
 }
 
 TEST(Simplify, TwoSpellingsOfOneFormulaBecomeOne) {

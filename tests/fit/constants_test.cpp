@@ -145,6 +145,23 @@ TEST(FitConstants, WeightsChangeTheLeastSquaresCriterion) {
   EXPECT_NEAR(g[0].value, 1.0, 1e-9);
 }
 
+// Exact constants (snapped, or exponents the simplifier made) are held: only the free ones move.
+TEST(FitConstants, HoldsExactConstantsFixed) {
+  const Columns c = sampled("1.5 * x ^ 2.5", 30);
+  Genome g = nodes_of("1 * x ^ 2");
+  g[2] = expr::exact_constant(2, 1, expr::Symbol::one);
+  fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_EQ(g[2].value, 2);
+  EXPECT_TRUE(expr::is_exact(g[2]));
+  EXPECT_NE(g[0].value, 1);  // the free coefficient was fitted
+  std::vector<double> value, gradient;
+  evaluate_with_gradient(g, c.rows(), value, gradient);
+  EXPECT_EQ(gradient.size(), c.target.size());  // one free constant
+  Genome free = nodes_of("1 * x ^ 2");  // negative control: a plain exponent moves to 2.5
+  fit_constants(free, c.rows(), Constants::fitted);
+  EXPECT_NEAR(free[2].value, 2.5, 1e-9);
+}
+
 TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
   const Columns c = sampled("x", 10);
   Genome g = nodes_of("log(x - 1.5)");

@@ -47,6 +47,18 @@ TEST(CanonicalKey, KeepsDifferentFormsApart) {
   EXPECT_NE(key("x"), key("y"));
 }
 
+// An exact constant is not free: x^2 (exact) and x^c are different forms, x^2 and x^3 too.
+TEST(CanonicalKey, KeysExactConstantsByTheirValue) {
+  const auto power = [](expr::Node exponent) {
+    return canonical_key(Genome{{expr::Op::variable, 0, 0}, exponent, {expr::Op::pow, 0, 0}});
+  };
+  const auto two = expr::exact_constant(2, 1, expr::Symbol::one);
+  EXPECT_EQ(power(two), power(two));
+  EXPECT_NE(power(two), key("x ^ 2"));
+  EXPECT_NE(power(two), power(expr::exact_constant(3, 1, expr::Symbol::one)));
+  EXPECT_EQ(key("x ^ 2"), key("x ^ 3"));  // negative control: free exponents share a key
+}
+
 TEST(FoldedConstants, CollapsesConstantOnlySubtrees) {
   const auto folded = [](std::string_view text) {
     return expr::to_infix(expr::Expression(folded_constants(nodes_of(text)), {"x", "y"}));

@@ -2,8 +2,11 @@
 // computes the same on the training rows, is no larger, and uses what the search allows.
 #include "fit/simplified.h"
 
+#include "fit/constants.h"
+
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "specula/expr/expr.h"
@@ -53,6 +56,47 @@ TEST(Simplified, KeepsAFormulaWhoseRewriteChangesItsValuesOnTheData) {
   EXPECT_EQ(text(simplified_or_same(g, negative.predicted, negative.rows, all_operators())), "sqrt(v0) * sqrt(v0)");
   const Case positive({0.5, 1, 2}, g);
   EXPECT_EQ(text(simplified_or_same(g, positive.predicted, positive.rows, all_operators())), "v0");
+}
+
+// v0·v0 becomes v0^2 with an exact exponent: the next fit of a formula holding it moves only the
+// free constants. Were the 2 free, its derivative (v0^2·ln v0) is undefined at v0 < 0, and the
+// fit of the other constant fails with it.
+TEST(Simplified, APowerItMakesLeavesTheOtherConstantsFittable) {
+  const Genome g = genome("v0 * v0 * exp(1 * v0)");
+  std::vector<double> x, y;
+  for (int i = 0; i <= 20; ++i) {
+    x.push_back(-1 + i / 10.0);
+    y.push_back(x.back() * x.back() * std::exp(0.7 * x.back()));
+  }
+  Case c(x, g);
+  c.rows.target = y;
+  SimplifyRules rules = all_operators();
+  rules.operators.push_back(expr::Op::exp);
+  Genome simple = simplified_or_same(g, c.predicted, c.rows, rules);
+  ASSERT_EQ(text(simple), "v0 ^ 2 * exp(v0)");
+  simple.insert(simple.begin() + 3, expr::Node{expr::Op::constant, 0, 1.0});  // exp(c·v0) again
+  simple.insert(simple.begin() + 5, expr::Node{expr::Op::mul, 0, 0});
+  ASSERT_EQ(text(simple), "v0 ^ 2 * exp(1 * v0)");
+  fit_constants(simple, c.rows, Constants::fitted);
+  EXPECT_EQ(simple[1].value, 2);
+  EXPECT_NEAR(simple[3].value, 0.7, 1e-12) << text(simple);
+}
+
+TEST(ReliesOnCancellation, FlagsSumsThatLoseDigitsOnEveryRow) {
+  std::vector<double> x;
+  for (int i = 1; i <= 20; ++i) x.push_back(i / 20.0);
+  Rows rows;
+  rows.columns = {x};
+  rows.target = x;
+  const auto cancels = [&](const char* text) { return relies_on_cancellation(genome(text), rows); };
+  EXPECT_TRUE(cancels("1573607.28 - 0.99999936 ^ v0 * 1573606.29"));
+  EXPECT_TRUE(cancels("1105270 - 0.197243 * (5603590 - v0)"));
+  EXPECT_TRUE(cancels("1e7 * v0 - 1e7 * (v0 - 5e-8)"));
+  // Negative controls: cancellation near one end only, none at all, or no constant to fit.
+  EXPECT_FALSE(cancels("sin(v0) - v0 * 1"));
+  EXPECT_FALSE(cancels("1000 + v0"));
+  EXPECT_FALSE(cancels("1 - v0"));
+  EXPECT_FALSE(cancels("v0 - v0"));
 }
 
 TEST(Simplified, UsesOnlyTheOperatorsTheSearchAllows) {

@@ -55,6 +55,40 @@ TEST(SnapCandidates, TrySimpleNumbersSimplestFirst) {
   EXPECT_TRUE(has_three_pi);
 }
 
+// A symbol's multiples are simple ones: p·s/q with q ∈ {1, 2, 3, 4, 6}. 6·e/11 = 1.48277… is
+// no cleaner than the double; π/4, 2·√2/3 and 5·ln 2/6 are offered.
+TEST(SnapCandidates, OfferOnlySimpleMultiplesOfTheSymbols) {
+  for (double value : {6 * std::numbers::e / 11, 1.0, 0.37, 2.2, 7.9}) {
+    for (const auto& c : snap_candidates(value)) {
+      if (c.symbol == expr::Symbol::one) continue;
+      EXPECT_TRUE(c.denominator <= 4 || c.denominator == 6) << value << ": " << int(c.numerator) << "/" << int(c.denominator);
+    }
+  }
+  const auto offered = [](double value, expr::Symbol s, int p, int q) {
+    for (const auto& c : snap_candidates(value))
+      if (c.symbol == s && c.numerator == p && c.denominator == q) return true;
+    return false;
+  };
+  EXPECT_TRUE(offered(std::numbers::pi / 4, expr::Symbol::pi, 1, 4));
+  EXPECT_TRUE(offered(2 * std::numbers::sqrt2 / 3, expr::Symbol::sqrt2, 2, 3));
+  EXPECT_TRUE(offered(5 * std::numbers::ln2 / 6, expr::Symbol::ln2, 5, 6));
+  EXPECT_FALSE(offered(6 * std::numbers::e / 11, expr::Symbol::e, 6, 11));
+}
+
+// A rough formula takes no multiple of a symbol: c·x for 1.0397·x + 0.05·sin(7x) stays a number
+// (or a plain fraction); the same c·x on exact data 3·ln 2/2·x reads 3 * log(2) / 2.
+TEST(Snapped, SymbolsOnlyWhereTheFormulaFitsExactly) {
+  const double c = 3 * std::numbers::ln2 / 2;
+  const Data1 rough(0, 1, 21, [&](double x) { return c * x + 0.05 * std::sin(7 * x); });
+  Genome g = genome("1 * x");
+  fit_constants(g, rough.rows, Constants::fitted);
+  EXPECT_EQ(text(snapped(g, rough.rows, rounding()).genome).find("log"), std::string::npos);
+  const Data1 exact(0, 1, 21, [&](double x) { return c * x; });
+  Genome h = genome("1 * x");
+  fit_constants(h, exact.rows, Constants::fitted);
+  EXPECT_EQ(text(snapped(h, exact.rows, rounding()).genome), "3 * log(2) / 2 * x");
+}
+
 TEST(Snapped, TheBloatedFitReadsWithAThirdAndThreePi) {
   const Data1 d(0, 4, 41, [](double x) { return x * x / 3 + std::numbers::pi * x; });
   const Genome g = genome("(9.424777960769376 + x) * 0.3333333333333334 * x");

@@ -94,6 +94,7 @@ struct OptionRanges {
   static constexpr double time_s = 1e6;           ///< time_limit_s in (0, 1e6] seconds
   static constexpr std::size_t rows = 1'000'000;  ///< data rows
   static constexpr double snap_tolerance = 1;     ///< snap_tolerance in (0, 1]
+  static constexpr std::size_t starts = 1000;     ///< starts: at most 1000 formulas
 };
 
 struct Options {
@@ -117,10 +118,15 @@ struct Options {
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
   /// Constant snapping (docs/fit.md): each front formula's constants tried as simple numbers (0,
-  /// integers, p/q with q ≤ 12, p·s/q for s = π, e, ln 2, √2, √3), each kept where the error rises by
+  /// integers, p/q with q ≤ 12, p·s/q for s = π, e, ln 2, √2, √3 and q ≤ 6), each kept where the error rises by
   /// at most snap_tolerance of itself (or stays below the target error or rounding).
   bool snap = true;
   double snap_tolerance = 0.01;  ///< in (0, 1]
+  /// Formulas over the data's variables the search starts from besides its own (at most
+  /// OptionRanges::starts, each within max_size): their constants are fitted from the values
+  /// written, they are simplified like any candidate, and they join the front and the
+  /// populations. An unreadable one is InvalidField "starts".
+  std::vector<std::string> starts;
   /// When set, the search stops at its next budget check (within an enumeration chunk, a
   /// population or a generation) with stopped_by cancelled and the front found so far. The
   /// calling thread's work limit (specula/interrupt) counts too: its cancel flag as a cancel, its
