@@ -20,7 +20,8 @@ export function setupFit(lobeModels) {
 
   const show = (s) => {
     status.textContent = `job ${s.job}: ${s.state}` + (s.stopped_by ? ` (stopped by ${s.stopped_by})` : '') +
-      ` · ${s.evaluations} evaluations · ${s.generations} generations · ${s.elapsed_s.toFixed(1)} s`;
+      ` · ${s.evaluations} evaluations · ${s.generations} generations · ${s.elapsed_s.toFixed(1)} s` +
+      (s.snap ? ' · constants snapped' : ' · constants as fitted');
     body.replaceChildren(...s.front.map((c, i) => {
       const row = document.createElement('tr');
       if (i === s.chosen) row.className = 'chosen';
@@ -49,7 +50,8 @@ export function setupFit(lobeModels) {
   $('fit-form').addEventListener('submit', async (event) => {
     event.preventDefault();
     try {
-      const request = {model: select.value, n: $('fit-n').value, generations: Number($('fit-generations').value), time: 60};
+      const request = {model: select.value, n: $('fit-n').value, generations: Number($('fit-generations').value), time: 60,
+                       snap: $('fit-snap').checked};
       if ($('fit-round').value !== '') request.round = Number($('fit-round').value);
       job = (await api('/api/fit', request)).job;
       $('fit-start').disabled = true;

@@ -125,12 +125,25 @@ nlohmann::json front_json(const fit::Result& r, const FitOptions& o) {
   return j;
 }
 
-// The chosen formula as a function in another language, constants at full precision.
-std::string emitted(const fit::Result& r, const FitOptions& o) {
+// The formula's error over every data row.
+double error_on(const expr::Expression& formula, const fit::Data& data, fit::Metric metric) {
+  std::vector<double> predicted(data.target.size());
+  const std::vector<std::span<const double>> columns(data.columns.begin(), data.columns.end());
+  expr::evaluate_batch(formula, columns, predicted);
+  return fit::measure(metric, predicted, data.target);
+}
+
+// The chosen formula as a function in another language, constants at full precision. GLSL
+// (float) also states the error with its constants rounded to float.
+std::string emitted(const fit::Result& r, const FitOptions& o, const fit::Data& data, fit::Metric metric) {
   const auto& c = r.front[r.chosen];
-  const std::string origin =
+  std::string origin =
       fmt::format("specula fit: {} from {} ({}), size {}, train {} {:.6g}", target(o), source(o),
                   fmt::join(c.formula.variables(), ", "), c.size, o.metric, c.train_error);
+  if (o.emit == "glsl")
+    origin += fmt::format("; over all {} rows, {} {:.6g} with float constants (double: {:.6g})", data.target.size(),
+                          o.metric, error_on(fit::float_constants(c.formula), data, metric),
+                          error_on(c.formula, data, metric));
   return fit::emit_function(c.formula, o.emit, target(o), origin);
 }
 
@@ -178,7 +191,7 @@ void run(const FitOptions& o) {
   }
   std::string text;
   if (!o.emit.empty())
-    text = emitted(result, o);
+    text = emitted(result, o, data, options.metric);
   else if (o.format == "json")
     text = front_json(result, o).dump(2) + "\n";
   else

@@ -32,7 +32,7 @@ double lobe_coefficient(const families::Family& family, const families::ModelDef
 ModelInfo builtin_info(const families::Family& family, const families::ModelDefinition& model) {
   ModelInfo info{std::string(model.id), std::string(model.name), std::string(model.summary),
                  std::string(model.source), family.kind, model.form, model.normalization,
-                 std::string(model.coef_text), {}, {}, nullptr};
+                 std::string(model.coef_text), {}, {}, nullptr, {}};
   for (const auto& p : family.params)
     info.params.push_back({std::string(p.name), p.default_value, p.min, p.max, p.min_exclusive, std::string(p.meaning)});
   if (family.kind == ModelKind::brdf)

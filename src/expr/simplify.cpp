@@ -193,18 +193,27 @@ bool is_exact_constant(const Tree& t) { return is_constant(t) && is_exact(leaf_n
 Tree power(Tree base, double exponent, bool exact) {
   if (exponent == 0) return constant(1);
   if (exponent == 1) return base;
-  if (base.op == Op::mul && exponent == std::round(exponent)) {  // (c·x)^k = c^k·x^k for whole k
+  const auto whole = [](double v) { return v == std::round(v); };
+  const auto even = [&](double v) { return whole(v) && std::fmod(v, 2) == 0; };
+  // (c·x)^k = c^k·x^k for whole k, or where every factor is ≥ 0 (a positive constant, an even
+  // power): (1.5874·x^4)^1.5 = 2.0000·x^6.
+  const auto nonnegative = [&](const Tree& f) {
+    return (is_constant(f) && f.value >= 0) || (f.op == Op::pow && is_constant(f.kids[1]) && even(f.kids[1].value));
+  };
+  if (base.op == Op::mul && (whole(exponent) || std::all_of(base.kids.begin(), base.kids.end(), nonnegative))) {
     std::vector<Tree> factors;
     for (Tree& factor : base.kids) factors.push_back(power(std::move(factor), exponent, exact));
     return product(std::move(factors));
   }
-  // (x^a)^b = x^(a·b) where both sides are defined alike: not for whole a and fractional b,
-  // where x < 0 is in the left's domain (x^2 ≥ 0) and out of the right's.
-  const auto whole = [](double v) { return v == std::round(v); };
-  if (base.op == Op::pow && is_constant(base.kids[1]) && (whole(exponent) || !whole(base.kids[1].value))) {
+  // (x^a)^b = x^(a·b) where both sides are defined alike: not for whole a and fractional b, where
+  // x < 0 is in the left's domain and out of the right's — unless a and a·b are even, where both
+  // are |x|^(a·b): (x^4)^1.5 = x^6, but (x^2)^0.5 = |x|.
+  if (base.op == Op::pow && is_constant(base.kids[1])) {
     const double inner = base.kids[1].value;
-    const bool inner_exact = is_exact_constant(base.kids[1]);
-    return power(std::move(base.kids[0]), inner * exponent, exact && inner_exact);
+    if (whole(exponent) || !whole(inner) || (even(inner) && even(inner * exponent))) {
+      const bool inner_exact = is_exact_constant(base.kids[1]);
+      return power(std::move(base.kids[0]), inner * exponent, exact && inner_exact);
+    }
   }
   Tree t{Op::pow, 0, 0, {std::move(base), exponent_constant(exponent, exact)}};
   if (is_constant(t.kids[0])) {

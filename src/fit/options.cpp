@@ -262,4 +262,19 @@ expr::Expression rounded(const expr::Expression& e, int digits) {
   return expr::Expression(std::move(nodes), e.variables());
 }
 
+expr::Expression float_constants(const expr::Expression& e) {
+  std::vector<expr::Node> nodes(e.nodes().begin(), e.nodes().end());
+  for (auto& n : nodes) {
+    if (n.op != Op::constant) continue;
+    float value = static_cast<float>(n.value);
+    if (expr::is_exact(n)) {
+      value = static_cast<float>(n.numerator);
+      if (n.symbol != expr::Symbol::one) value *= static_cast<float>(expr::symbol_value(n.symbol));
+      value /= static_cast<float>(n.denominator);
+    }
+    n = expr::Node{Op::constant, 0, value};
+  }
+  return expr::Expression(std::move(nodes), e.variables());
+}
+
 }  // namespace specula::fit

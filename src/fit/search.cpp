@@ -386,6 +386,20 @@ class Island {
     select();
   }
 
+  // Starts afresh from `seeds` and new random formulas (the cache stays).
+  void restart(const std::vector<Individual>& seeds) {
+    population_.clear();
+    rank_.clear();
+    present_.clear();
+    populate(seeds);
+  }
+
+  double best_loss() const {
+    double best = INFINITY;
+    for (const auto& x : population_) best = std::min(best, x.loss);
+    return best;
+  }
+
   const std::vector<Individual>& population() const { return population_; }
   std::int64_t evaluations() const { return evaluations_; }
 
@@ -454,6 +468,11 @@ class Island {
 };
 
 constexpr int kEpochGenerations = 5;
+// Every this many epochs the island with the worst best error starts afresh (with two islands or
+// more; the archive keeps what it found). A search that goes wrong goes wrong early, into towers
+// of fitted constants that improve slowly and never leave; one that goes right finds its formula
+// in tens of generations.
+constexpr int kRestartEpochs = 20;
 constexpr std::size_t kMigrants = 5;
 constexpr std::size_t kEnumerationChunk = 512;
 
@@ -593,6 +612,7 @@ class Search {
     });
     collect(islands, enumerated);
     check_budget(false);
+    int epochs_since_restart = 0;
     while (!stopped()) {
       const int epoch = options_.max_generations
                             ? static_cast<int>(std::min<std::int64_t>(
@@ -604,6 +624,13 @@ class Search {
       generations_ += epoch;
       collect(islands, enumerated);
       migrate(islands);
+      if (islands.size() > 1 && ++epochs_since_restart == kRestartEpochs) {
+        epochs_since_restart = 0;
+        const auto worst = std::max_element(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
+          return a.best_loss() < b.best_loss();
+        });
+        worst->restart(seeds[static_cast<std::size_t>(worst - islands.begin())]);
+      }
       check_budget(true);
       report();
     }

@@ -169,7 +169,7 @@ std::string status_json(const Job& job) {
            {"variables", job.data.variables}, {"rows", job.data.target.size()},
            {"elapsed_s", job.progress.elapsed_s}, {"time_left_s", job.progress.time_left_s},
            {"evaluations", job.progress.evaluations}, {"generations", job.progress.generations},
-           {"front", Json::array()}};
+           {"snap", job.options.snap}, {"front", Json::array()}};
   for (const auto& c : job.front) out["front"].push_back(candidate_json(c, job));
   out["chosen"] = job.chosen ? Json(*job.chosen) : Json();
   out["stopped_by"] = job.stopped_by ? Json(fit::to_string(*job.stopped_by)) : Json();

@@ -722,6 +722,9 @@ TEST_F(CliFit, EmitsTheChosenFormulaAsCode) {
   };
   const Result cpp = emitting("cpp");
   EXPECT_THAT(cpp.out, HasSubstr("double fitted_y(double x) {"));
+  const Result glsl = emitting("glsl");
+  EXPECT_THAT(glsl.out, HasSubstr("with float constants (double: "));
+  EXPECT_THAT(cpp.out, ::testing::Not(HasSubstr("float constants")));  // negative control: C++ keeps doubles
   const Result python = emitting("python");
   EXPECT_THAT(python.out, ::testing::StartsWith("import math\n"));
   EXPECT_THAT(python.out, HasSubstr("def fitted_y(x):"));

@@ -66,6 +66,10 @@ TEST(Simplify, KeepsPowersOfPowersApartWhereTheDomainsDiffer) {
   EXPECT_EQ(evaluate(simplify(e), std::vector<double>{-2.0}), 2);
   EXPECT_EQ(to_infix(simplify(parse("(x ^ 0.5) ^ 2", {"x"}))), "x");
   EXPECT_EQ(to_infix(simplify(parse("(x ^ 2) ^ 3", {"x"}))), "x ^ 6");
+  EXPECT_EQ(to_infix(simplify(parse("(x ^ 4) ^ 1.5", {"x"}))), "x ^ 6");  // |x|^6 = x^6
+  EXPECT_EQ(evaluate(simplify(parse("(x ^ 2) ^ 1.5", {"x"})), std::vector<double>{-2.0}), 8);  // |x|^3
+  EXPECT_EQ(to_infix(simplify(parse("(4 * x ^ 4) ^ 1.5", {"x"}))), "8 * x ^ 6");
+  EXPECT_EQ(to_infix(simplify(parse("(4 * x) ^ 1.5", {"x"}))), "(4 * x) ^ 1.5");  // x may be < 0: not spread
 }
 
 TEST(Simplify, TakesTheMinusOutOfEvenAndOddFunctions) {

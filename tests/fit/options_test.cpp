@@ -1,6 +1,8 @@
 // Options of the search: metrics, operator lists, size weights, and the choice of a formula.
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -15,6 +17,18 @@ namespace specula::fit {
 namespace {
 
 using expr::Op;
+
+// As a float shader has them: 0.1 rounded to float, 1/3 as float(1)/float(3), π/4 in float.
+TEST(FloatConstants, RoundAsAShaderDoes) {
+  const expr::Expression third(std::vector<expr::Node>{expr::exact_constant(1, 3, expr::Symbol::one)}, {});
+  EXPECT_EQ(expr::evaluate(float_constants(third), {}), static_cast<double>(1.0f / 3.0f));
+  const expr::Expression quarter_pi(std::vector<expr::Node>{expr::exact_constant(1, 4, expr::Symbol::pi)}, {});
+  EXPECT_EQ(expr::evaluate(float_constants(quarter_pi), {}), static_cast<double>(static_cast<float>(std::numbers::pi) / 4.0f));
+  const expr::Expression tenth = expr::parse("0.1 * x", {"x"});
+  const double x = 1;
+  EXPECT_EQ(expr::evaluate(float_constants(tenth), std::span<const double>(&x, 1)), static_cast<double>(0.1f));
+  EXPECT_NE(expr::evaluate(tenth, std::span<const double>(&x, 1)), static_cast<double>(0.1f));  // negative control
+}
 
 TEST(Measure, ComputesEachMetricByHand) {
   const std::vector<double> y{1, 2, 4}, f{1.5, 2, 3};  // errors 0.5, 0, -1

@@ -161,6 +161,21 @@ TEST_F(Page, TheFitPanelShowsTheFrontWithCopyableCode) {
             2 * browser_->run("return document.querySelectorAll('#fit-front tbody tr').length;").get<int>());
 }
 
+// The snap switch reaches the server: its status says which it ran.
+TEST_F(Page, TheFitPanelsSnapSwitchReachesTheServer) {
+  open(kState);
+  browser_->run("document.getElementById('fit-generations').value = '2';");
+  EXPECT_EQ(browser_->run("return document.getElementById('fit-snap').checked;"), true);
+  browser_->click("#fit-start");
+  ASSERT_TRUE(browser_->wait_for("return /: (done|failed)/.test(document.getElementById('fit-status').textContent);"));
+  EXPECT_THAT(browser_->run("return document.getElementById('fit-status').textContent;").get<std::string>(),
+              HasSubstr("constants snapped"));
+  browser_->run("document.getElementById('fit-snap').checked = false;");
+  browser_->click("#fit-start");
+  ASSERT_TRUE(browser_->wait_for("return /constants as fitted/.test(document.getElementById('fit-status').textContent) && "
+                                 "/: (done|failed)/.test(document.getElementById('fit-status').textContent);"));
+}
+
 /// The editor's default definition as a model file, for the CPU renderer's image of it.
 Model editor_default_model() {
   const auto infos = parse_model_file(R"([[model]]

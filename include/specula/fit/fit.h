@@ -185,4 +185,9 @@ std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice ch
 /// 1/3 or π/4, stays as it is).
 expr::Expression rounded(const expr::Expression& e, int digits);
 
+/// `e` with its constants as a float shader has them: a plain one rounded to the nearest float, an
+/// exact one p·s/q computed in float as its GLSL text reads ((p · s) / q). Its error on the data
+/// is what `--emit glsl` reports beside the double one.
+expr::Expression float_constants(const expr::Expression& e);
+
 }  // namespace specula::fit
