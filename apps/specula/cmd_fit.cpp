@@ -225,7 +225,9 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(1, fit::OptionRanges::max_size));
   cmd->add_option("--size-weights", o->weights, "default (every node 1) | turingbot (÷ = 2) | a list like \"/=2,exp=3\" over the --ops names")
       ->capture_default_str();
-  cmd->add_option("--metric", o->metric, names_listed<fit::Metric, fit::kMetricCount>(fit::metric_name, " | ", " | "))
+  cmd->add_option("--metric", o->metric,
+                  names_listed<fit::Metric, fit::kMetricCount>(fit::metric_name, " | ", " | ") +
+                      " (max-abs and max-rel fit the constants for the largest error itself: minimax, docs/fit.md)")
       ->capture_default_str();
   cmd->add_option("--test-fraction", o->search.test_fraction, "Rows held out for the test error, in [0, 1)")
       ->capture_default_str();
