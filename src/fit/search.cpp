@@ -76,7 +76,6 @@ struct Problem {
       return n.op == Op::constant && std::abs(n.value) > largest_constant;
     }) || relies_on_cancellation(g, train);
   }
-
 };
 
 // Constants may reach 1e6 times the largest magnitude in the data (or 1e6 for data within ±1).
@@ -158,7 +157,6 @@ void validate(const Data& data, const Options& o) {
     throw InvalidArgument(fmt::format("the time limit must be in (0, {:g}] seconds", R::time_s));
   if (o.target_error && !(*o.target_error >= 0))
     throw InvalidArgument("the target error must be a number ≥ 0");
-  starting_formulas(data, o);
 }
 
 std::vector<std::size_t> test_rows(std::size_t rows, const Options& o) {
@@ -511,11 +509,12 @@ class Search {
         alphabet_(o, static_cast<std::uint32_t>(data.variables.size())),
         arena_(std::min(o.threads > 0 ? o.threads : 1 << 20, oneapi::tbb::info::default_concurrency())),
         budget_(o),
-        archive_(rounding_noise(problem_)) {}
+        archive_(rounding_noise(problem_)),
+        starts_(starting_formulas(data, o)) {}
 
   Result run() {
     auto fitted = enumerate();
-    for (const Genome& g : starting_formulas(data_, options_)) {
+    for (const Genome& g : starts_) {
       fitted.push_back(problem_.evaluate(g, canonical_key(g)));
       archive_.offer(fitted.back());
       ++evaluations_;
@@ -696,6 +695,7 @@ class Search {
   oneapi::tbb::task_arena arena_;
   Budget budget_;
   Archive archive_;
+  const std::vector<Genome> starts_;  // Options::starts, read (and refused) before any work
   std::int64_t evaluations_ = 0, generations_ = 0;
   std::optional<StopReason> stopped_by_;
 };
