@@ -7,7 +7,7 @@
 # specula_<component>_needs: the components it builds on, in that order.
 # specula_<component>_packages: find_package arguments, one element per package ("pkg-config:NAME"
 #   for a pkg-config module, imported as PkgConfig::<NAME in upper case with '-' as '_'>).
-set(specula_components core fit cost queries render gl report serve)
+set(specula_components core fit cost design queries render gl report serve)
 
 set(specula_core_needs "")
 set(specula_core_packages fmt TBB hwy "tomlplusplus 3")
@@ -17,6 +17,9 @@ set(specula_fit_packages "")
 
 set(specula_cost_needs core)
 set(specula_cost_packages "")
+
+set(specula_design_needs core fit cost)
+set(specula_design_packages "")
 
 set(specula_queries_needs core fit)
 set(specula_queries_packages "")

@@ -44,6 +44,7 @@ int run(int argc, char** argv) {
   specula::cli::add_check_command(app);
   specula::cli::add_error_command(app);
   specula::cli::add_fit_command(app);
+  specula::cli::add_design_command(app);
   specula::cli::add_sample_command(app);
   specula::cli::add_render_command(app);
   specula::cli::add_compare_command(app);

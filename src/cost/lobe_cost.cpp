@@ -140,8 +140,8 @@ std::vector<T> peaked_cosines(std::size_t count) {
 /// ns per value of one in-cache trial: whole passes over `c` until `seconds` have gone by. The
 /// clock is read every 64 passes: once per pass would add ~20 ns to a 4 KiB pass of a lobe that
 /// takes 0.1 ns per value.
-template <class T>
-double cache_trial(const Evaluator<T>& eval, std::span<const T> c, std::span<T> out, double seconds) {
+template <class T, class Eval>
+double cache_trial(const Eval& eval, std::span<const T> c, std::span<T> out, double seconds) {
   constexpr std::size_t kPassesPerClock = 64;
   std::size_t values = 0;
   const auto start = Clock::now();
@@ -436,6 +436,24 @@ Result run(const Settings& settings, const std::function<void(std::string_view)>
     result.error_vs_power.push_back(analysis::approximation_error(lobe, lobes::Power<double>{settings.n}).max_abs);
   }
   return result;
+}
+
+std::vector<double> time_in_cache(std::span<const FloatKernel> kernels, const Settings& s) {
+  const std::vector<float> c = peaked_cosines<float>(std::max<std::size_t>(s.cache_bytes / sizeof(float), 1));
+  std::vector<float> out(c.size());
+  std::vector<double> fastest(kernels.size(), NAN);
+  for (const auto& kernel : kernels) cache_trial(kernel, std::span<const float>(c), std::span<float>(out), s.trial_seconds / 4);
+  for (int trial = 0; trial < s.trials; ++trial)
+    for (std::size_t k = 0; k < kernels.size(); ++k)
+      keep_fastest(fastest[k], cache_trial(kernels[k], std::span<const float>(c), std::span<float>(out), s.trial_seconds));
+  return fastest;
+}
+
+FloatKernel lobe_kernel(const lobes::Lobe& lobe, Path path) {
+  if (path == Path::scalar) return [lobe](std::span<const float> c, std::span<float> out) { scalar_batch<float>(lobe, c, out); };
+  return [lobe, tier = tier_of(path)](std::span<const float> c, std::span<float> out) {
+    simd::eval_batch(simd::spec_of(lobe), tier, c, out);
+  };
 }
 
 }  // namespace specula::cost

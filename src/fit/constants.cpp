@@ -659,4 +659,32 @@ std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, M
   return p.value();
 }
 
+FittedFormula fit_formula_constants(const expr::Expression& formula, const Data& data, Metric metric) {
+  if (data.target.empty()) throw InvalidArgument("no data rows");
+  if (data.columns.size() != formula.variables().size())
+    throw InvalidArgument(fmt::format("the formula reads {} variables, the data has {} columns",
+                                      formula.variables().size(), data.columns.size()));
+  const bool relative = metric == Metric::mean_relative || metric == Metric::max_rel;
+  Rows rows;
+  for (const auto& column : data.columns) {
+    if (column.size() != data.target.size()) throw InvalidArgument("every column needs one value per target row");
+    if (!std::ranges::all_of(column, [](double x) { return std::isfinite(x); }))
+      throw InvalidArgument("the data holds a value that is not a finite number");
+    rows.columns.emplace_back(column);
+  }
+  for (double y : data.target)
+    if (!std::isfinite(y) || (relative && y == 0))
+      throw InvalidArgument("a target value is not finite (or is 0 under a relative metric)");
+  rows.target = data.target;
+  if (relative)
+    for (double y : data.target) rows.weights.push_back(1 / (y * y));
+  Genome g(formula.nodes().begin(), formula.nodes().end());
+  if (std::ranges::count_if(g, is_free_constant) > static_cast<std::ptrdiff_t>(kMaxConstants))
+    throw InvalidArgument(fmt::format("more than {} constants", kMaxConstants));
+  const auto predicted = fit_constants(g, rows, Constants::fitted, metric);
+  double error = measure(metric, predicted, data.target);
+  if (std::isnan(error)) error = INFINITY;
+  return {expr::Expression(std::move(g), formula.variables()), error};
+}
+
 }  // namespace specula::fit

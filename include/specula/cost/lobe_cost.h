@@ -8,10 +8,12 @@
 // measurement as a library function; bench/ at the top holds the Google Benchmark programs.)
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "specula/lobes/lobes.h"
 #include "specula/simd/lobes.h"
 
 namespace specula::cost {
@@ -98,5 +100,14 @@ std::string to_table(const Result& result);
 /// float), max_rel_error against the scalar double lobe, every time measured, the limits.
 std::string to_json(const Result& result);
 
+/// A float kernel: out[i] = F(c[i]) for the whole span.
+using FloatKernel = std::function<void(std::span<const float> c, std::span<float> out)>;
 
+/// ns per value of each kernel as the benchmark times a lobe in cache on one core (`cache_bytes`
+/// of its peaked cosines, the fastest of `trials` trials of `trial_seconds`, the kernels in turn):
+/// the harness in which the lobe designer times its lobes beside the built-in ones.
+std::vector<double> time_in_cache(std::span<const FloatKernel> kernels, const Settings& settings);
+
+/// The benchmark's kernel for `lobe` (copied) on `path`, in float lanes.
+FloatKernel lobe_kernel(const lobes::Lobe& lobe, Path path);
 }  // namespace specula::cost

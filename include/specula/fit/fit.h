@@ -177,6 +177,19 @@ struct Result {
 Result search(const Data& data, const Options& options,
               const std::function<void(const Progress&)>& on_progress = {});
 
+/// A formula with its constants fitted, and its error on the data in the metric fitted for.
+struct FittedFormula {
+  expr::Expression formula;
+  double error = 0;
+};
+/// `formula`'s plain constants fitted to `data` for `metric`, from the values written (exact
+/// constants stay), as search() fits every candidate: least squares (weighted by 1/y² for the
+/// relative metrics), then minimax for max_abs and max_rel. The formula's variables are the
+/// data's, in order. Throws InvalidArgument on data search() would refuse (no rows, columns of
+/// other lengths, non-finite values, a zero target under a relative metric) or more than 64
+/// constants.
+FittedFormula fit_formula_constants(const expr::Expression& formula, const Data& data, Metric metric);
+
 /// The index of the formula `choice` picks from a non-empty front (errors in `metric`).
 std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice,
                    double factor, double target_rms);

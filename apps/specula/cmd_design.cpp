@@ -1,0 +1,133 @@
+// specula design: the lobe designer (docs/designer.md).
+#include <fmt/format.h>
+#include <iostream>
+#include <unistd.h>
+
+#include "cli.h"
+#include "specula/design/design.h"
+#include "specula/design/output.h"
+#include "specula/interrupt/interrupt.h"
+
+namespace specula::cli {
+namespace {
+
+struct DesignOptions {
+  std::string target = "phong";
+  std::vector<std::string> params;
+  std::string form, range = "n=1:1000", objective = "max-abs", ops = "all", shard = "0/1", out;
+  design::Settings settings;
+  std::optional<std::int64_t> max_forms;
+  bool quiet = false;
+};
+
+// "NAME=LO:HI".
+void read_range(const std::string& text, design::Settings& s) {
+  const auto eq = text.find('=');
+  const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
+  if (eq == std::string::npos || colon == std::string::npos || eq == 0)
+    throw InvalidArgument(fmt::format("--range must be NAME=LO:HI, e.g. n=1:1000, got '{}'", text));
+  s.param = text.substr(0, eq);
+  const auto number = [&](std::string_view part) {
+    const auto values = option_values("--range", part, 1);
+    return values.at(0);
+  };
+  s.lo = number(std::string_view(text).substr(eq + 1, colon - eq - 1));
+  s.hi = number(std::string_view(text).substr(colon + 1));
+}
+
+// "I/N".
+void read_shard(const std::string& text, design::Settings& s) {
+  int i = -1, n = -1;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/')
+    throw InvalidArgument(fmt::format("--shard must be I/N (0 ≤ I < N), got '{}'", text));
+  s.shard = i;
+  s.shards = n;
+}
+
+design::Settings settings_of(const DesignOptions& o) {
+  design::Settings s = o.settings;
+  s.target = o.target;
+  ModelOptions model;
+  model.params = o.params;
+  s.params = model.param_values();
+  if (!o.form.empty()) s.form = form_named(o.form);
+  read_range(o.range, s);
+  s.objective = choice_named<design::Objective, design::kObjectiveCount>("objective", o.objective, Spelling::option);
+  s.operations = design::parse_operations(o.ops);
+  s.max_forms = o.max_forms;
+  read_shard(o.shard, s);
+  return s;
+}
+
+class ProgressPrinter {
+ public:
+  void operator()(const design::Progress& p) {
+    std::cerr << fmt::format("\r\033[K{}: {}/{}", p.phase, p.done, p.total) << std::flush;
+  }
+  ~ProgressPrinter() { std::cerr << "\r\033[K" << std::flush; }
+};
+
+void run(const DesignOptions& o) {
+  const design::Settings s = settings_of(o);
+  design::validate(s);
+  if (o.out.empty()) throw InvalidArgument("--out DIR is required: the directory the front is written to");
+  design::Result result;
+  if (!o.quiet && isatty(STDERR_FILENO)) {
+    ProgressPrinter printer;
+    result = design::design(s, std::ref(printer));
+  } else {
+    result = design::design(s);
+  }
+  const int signal = stop_requested();
+  clear_stop_request();  // what was found is written, then the stop goes on
+  design::write_outputs(result, o.out);
+  std::cout << design::front_table(result)
+            << fmt::format("{} of {} shapes screened in {:.1f} s{}; {}\n", result.forms_screened, result.forms_total, result.seconds,
+                           result.cancelled ? " (stopped)" : "", result.cost_note);
+  if (signal != 0) {
+    request_stop(signal);
+    throw Interrupted(Interrupted::Reason::signal, signal);
+  }
+}
+
+}  // namespace
+
+void add_design_command(CLI::App& app) {
+  auto o = std::make_shared<DesignOptions>();
+  auto* cmd = app.add_subcommand("design", "Search cheap lobes against a target lobe; write their Pareto front");
+  cmd->add_option("--target", o->target, "The lobe to approximate: an id, 'lobe: FORMULA' or a model file's id")
+      ->capture_default_str();
+  cmd->add_option("--param,-p", o->params, "The target's other parameters, NAME=VALUE (repeatable)");
+  cmd->add_option("--form", o->form, "The target's form, rv or nh (default: its own)")->check(CLI::IsMember({"rv", "nh"}));
+  cmd->add_option("--range", o->range, "The parameter the lobes follow and its range, NAME=LO:HI")->capture_default_str();
+  cmd->add_option("--objective", o->objective, "max-abs: the largest |F − target|; max-rel: the largest relative error "
+                  "where the target ≥ --zone; both: the two as objectives")
+      ->capture_default_str()->check(one_of<design::Objective, design::kObjectiveCount>());
+  cmd->add_option("--zone", o->settings.zone, "The epicenter of max-rel: where the target ≥ zone, in (0, 1)")->capture_default_str();
+  cmd->add_option("--ops", o->ops, "Operations the lobes may use: all, or a list of fma, mul, add, max, div, sqrt, exp, log2")
+      ->capture_default_str();
+  cmd->add_option("--max-cost", o->settings.max_cost, "Shapes up to this cost model (fma = mul = add = max = 1, div = sqrt = 4, "
+                  "exp = log2 = 10), in [1, 24]; 7 and up take long")->capture_default_str();
+  cmd->add_option("--max-forms", o->max_forms, "Screen at most this many shapes, in [1, 10^6] (a budget that gives the "
+                  "same front on any machine)");
+  cmd->add_option("--time", o->settings.time_s, "Seconds for the screening (it stops there; the finishing takes a minute more), in (0, 86400]")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->settings.seed, "Seed of the constants' random starts")->capture_default_str();
+  cmd->add_option("--threads", o->settings.threads, "Threads, 0 = all cores, in [0, 1024]")->capture_default_str();
+  cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
+  cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
+  cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml (swapped in whole)");
+  cmd->add_flag("--quiet,-q", o->quiet, "No progress on stderr");
+  cmd->footer(
+      "Fits each shape's constants per value of the range parameter for the largest error, gives\n"
+      "them laws in the parameter (specula fit), measures each lobe's error over the whole domain\n"
+      "(the exact maxima of specula error, refined over the parameter), times the front and the\n"
+      "reference lobes as native code in one run, and writes the Pareto front. Examples:\n"
+      "  specula design --target phong --range n=1:1000 --out designed\n"
+      "  specula --models designed/models.toml error --model phong-d1 --reference phong --n 1:1000@20:log\n"
+      "  specula design --target phong --range n=1:1000 --ops fma,mul,max --max-cost 8 --out cheap");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace specula::cli

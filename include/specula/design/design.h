@@ -1,0 +1,131 @@
+#pragma once
+// The lobe designer (docs/designer.md): searches cheap lobe shapes F(c; p) against a target lobe
+// over a range of one of its parameters, fits each shape's constants per parameter value for the
+// largest error, turns those constants into formulas in the parameter (fit::search), measures
+// each finished lobe's largest error over the whole domain with the exact maxima of `specula
+// error`, times it as native vectorized code beside the reference lobes, and keeps the Pareto
+// front of cost against error. Deterministic for a seed and a form budget, for any thread count.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "specula/exceptions.h"
+#include "specula/models/model.h"
+
+namespace specula::design {
+
+/// The operations a designed lobe may use, with the search's cost model (float SIMD, in units of
+/// one fused multiply-add). The front is timed afterwards; the cost model only orders the search.
+///   fma   a·x + b with per-material a, b: 1       mul   x·y and x² (squaring): 1
+///   add   x + y: 1                                 max   max(x, 0): 1
+///   div   x / y: 4                                 sqrt  √x: 4
+///   exp   eˣ: 10                                   log2  log₂ x: 10
+enum class Operation { fma, mul, add, max, div, sqrt, exp, log2 };
+inline constexpr std::size_t kOperationCount = static_cast<std::size_t>(Operation::log2) + 1;  // log2: the last
+constexpr const char* to_string(Operation op) noexcept {
+  switch (op) {
+    case Operation::fma: return "fma";
+    case Operation::mul: return "mul";
+    case Operation::add: return "add";
+    case Operation::max: return "max";
+    case Operation::div: return "div";
+    case Operation::sqrt: return "sqrt";
+    case Operation::exp: return "exp";
+    case Operation::log2: return "log2";
+  }
+  return "";
+}
+static_assert(names_complete<Operation, kOperationCount>([](Operation o) { return to_string(o); }));
+int operation_cost(Operation op);
+/// Parses "fma,mul,max" (names as above; "all" for every one). Throws InvalidField "ops".
+std::vector<Operation> parse_operations(std::string_view text);
+
+/// What a candidate is ranked by, each over the whole domain (every c ∈ [0, 1], every parameter
+/// value in the range): the largest |F − target|; the largest |F − target|/target where the
+/// target is ≥ `zone` (the paper's epicenter); or both, as two objectives.
+enum class Objective { max_abs, max_rel, both };
+inline constexpr std::size_t kObjectiveCount = static_cast<std::size_t>(Objective::both) + 1;  // both: the last
+constexpr const char* to_string(Objective objective) noexcept {
+  switch (objective) {
+    case Objective::max_abs: return "max-abs";
+    case Objective::max_rel: return "max-rel";
+    case Objective::both: return "both";
+  }
+  return "";
+}
+static_assert(names_complete<Objective, kObjectiveCount>([](Objective o) { return to_string(o); }));
+
+/// The documented ranges of the options: anything outside is InvalidField named by its key.
+struct Ranges {
+  static constexpr int max_cost = 24;                 ///< max_cost in [1, 24]
+  static constexpr std::int64_t forms = 1'000'000;    ///< max_forms in [1, 10⁶]
+  static constexpr double time_s = 86'400;            ///< time_s in (0, 86400]
+  static constexpr int threads = 1024;                ///< threads in [0, 1024]
+  static constexpr int shards = 10'000;               ///< shard count in [1, 10000]
+  static constexpr double range_ratio = 1e12;         ///< hi / lo of the range (lo > 0), at most
+};
+
+struct Settings {
+  std::string target = "phong";  ///< a lobe model: id, "lobe: …" or a model-file id
+  ParamValues params;            ///< the target's other parameters
+  std::optional<Form> form;      ///< the target's form (default: its own)
+  std::string param = "n";       ///< the range parameter
+  double lo = 1, hi = 1000;      ///< its range
+  Objective objective = Objective::max_abs;
+  double zone = 0.5;             ///< the epicenter of max_rel: target ≥ zone
+  std::vector<Operation> operations = parse_operations("all");
+  int max_cost = 6;              ///< shapes up to this cost model
+  std::optional<std::int64_t> max_forms;  ///< at most this many forms screened (deterministic budget)
+  double time_s = 540;           ///< wall-clock budget of the screening
+  std::uint64_t seed = 1;
+  int threads = 0;               ///< 0: all cores
+  int shard = 0, shards = 1;     ///< this run screens the forms i with i mod shards = shard
+  bool measure_cost = true;      ///< time the front as native code (else the cost model only)
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// One lobe on the front, or a reference lobe.
+struct Lobe {
+  std::string id;
+  bool reference = false;
+  std::string formula;          ///< F in c and the parameter
+  std::string shape;            ///< the structure searched, constants as k ("" for references)
+  double max_abs = 0;           ///< over the whole domain
+  double argmax_c = 0, argmax_param = 0;
+  double max_rel = 0;           ///< in the epicenter, over the whole domain
+  int ops = 0;                  ///< operations per evaluation (free: the parameter's subexpressions)
+  int model_cost = 0;           ///< the cost model's units
+  double ns_per_eval = NAN;     ///< measured, float, one core, in cache; NaN if not measured
+  std::string timing;           ///< how ns_per_eval was measured ("native", "bench fast tier", …)
+  double spirv_instructions = NAN;  ///< of the GLSL export compiled by glslang; NaN if unavailable
+};
+
+struct Result {
+  Settings settings;
+  std::vector<Lobe> front;       ///< members, cheapest first, each more accurate than the cheaper
+  std::vector<Lobe> references;  ///< the target's usual approximations, measured in the same run
+  std::int64_t forms_screened = 0;
+  std::int64_t forms_total = 0;  ///< this shard's shapes within max_cost and max_forms
+  double seconds = 0;
+  bool cancelled = false;
+  std::string cost_note;         ///< how the costs were obtained (compiler, or why the model)
+};
+
+struct Progress {
+  std::string_view phase;
+  std::int64_t done = 0, total = 0;
+  const std::vector<Lobe>* front = nullptr;
+};
+
+/// Runs the designer. Throws InvalidArgument / InvalidField on bad settings (target not a lobe,
+/// range outside the parameter's, empty or reversed, budgets out of range).
+Result design(const Settings& settings, const std::function<void(const Progress&)>& progress = {});
+
+/// Throws what design() throws for `settings`, doing no work.
+void validate(const Settings& settings);
+
+}  // namespace specula::design

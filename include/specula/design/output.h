@@ -1,0 +1,25 @@
+#pragma once
+// What `specula design` writes (docs/designer.md): front.csv (members and references, one row
+// each), models.toml (a model file with every member bare and normalized), and the table it prints.
+#include <filesystem>
+#include <string>
+
+#include "specula/design/design.h"
+
+namespace specula::design {
+
+/// front.csv: id, kind (member|reference), formula, max_abs_error, argmax_c, argmax_param,
+/// max_rel_error, ns_per_eval, cost_vs_log, ops, spirv_instructions, model_cost, shape, timing.
+std::string front_csv(const Result& result);
+
+/// models.toml: for every member ID (the bare lobe, normalization none) and ID-normalized
+/// (k by quadrature), with the range parameter's range.
+std::string models_toml(const Result& result);
+
+/// The front as a plain-text table, members then references.
+std::string front_table(const Result& result);
+
+/// Writes front.csv and models.toml into `dir`, built beside it and swapped in whole.
+void write_outputs(const Result& result, const std::filesystem::path& dir);
+
+}  // namespace specula::design

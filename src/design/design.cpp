@@ -1,0 +1,397 @@
+// The designer's pipeline (include/specula/design/design.h): enumerate shapes by the cost model,
+// screen each on a few parameter values, fit the promising ones on a finer grid, give their
+// constants laws in the parameter, measure each finished lobe over the whole domain, time the
+// front and the references as native code in one harness, and keep the Pareto front.
+#include "specula/design/design.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include "fitting.h"
+#include "laws.h"
+#include "native.h"
+#include "shapes.h"
+#include "specula/catalogue/catalogue.h"
+#include "specula/interrupt/interrupt.h"
+#include "specula/simd/lobes.h"
+#include "verify.h"
+
+namespace specula::design {
+
+namespace {
+
+constexpr std::size_t kScreenGrid = 5;   // parameter values every shape is fitted at
+constexpr std::size_t kFineGrid = 17;    // … and the promising ones
+constexpr std::size_t kPerCost = 3;      // shapes kept per cost that do not improve the front
+constexpr double kKeepWithin = 1.5;      // … when within this factor of the front's best so far
+constexpr std::size_t kMaxCandidates = 40;
+constexpr std::size_t kChunk = 64;       // shapes screened between budget checks
+
+using Clock = std::chrono::steady_clock;
+
+class Stopper {
+ public:
+  explicit Stopper(const Settings& s) : s_(s), start_(Clock::now()) {}
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  bool cancelled() const { return stop_requested() != 0 || (s_.cancel && s_.cancel->load()); }
+  bool out_of_time() const { return seconds() >= s_.time_s; }
+
+ private:
+  const Settings& s_;
+  Clock::time_point start_;
+};
+
+struct Screened {
+  std::size_t shape;
+  GridFit fit;
+};
+
+std::vector<Samples> samples_over(const Settings& s, std::size_t count) {
+  std::vector<Samples> out;
+  for (double p : param_grid(s.lo, s.hi, count)) out.push_back(samples_at(s, p));
+  return out;
+}
+
+// Shapes worth the fine grid: each that lowers the best error of every cheaper shape, and up to
+// kPerCost more per cost within kKeepWithin of it.
+std::vector<std::size_t> promising(const std::vector<Shape>& shapes, const std::vector<Screened>& screened) {
+  std::vector<const Screened*> order;
+  for (const auto& x : screened)
+    if (x.fit.ok()) order.push_back(&x);
+  std::ranges::stable_sort(order, [&](auto* a, auto* b) {
+    const int ca = shapes[a->shape].cost, cb = shapes[b->shape].cost;
+    return ca < cb || (ca == cb && a->fit.worst < b->fit.worst);
+  });
+  std::vector<std::size_t> out;
+  double best = INFINITY;
+  std::map<int, std::size_t> kept_at_cost;
+  for (const Screened* x : order) {
+    const int cost = shapes[x->shape].cost;
+    const bool improves = x->fit.worst < best * (1 - 1e-3);
+    if (improves || (x->fit.worst < best * kKeepWithin && kept_at_cost[cost] < kPerCost)) {
+      out.push_back(x->shape);
+      ++kept_at_cost[cost];
+    }
+    best = std::min(best, x->fit.worst);
+  }
+  // The most promising first when there are too many: those that improve the front come first by cost.
+  if (out.size() > kMaxCandidates) out.resize(kMaxCandidates);
+  return out;
+}
+
+double objective_error(const Lobe& l, Objective o) {
+  return o == Objective::max_rel ? l.max_rel : l.max_abs;
+}
+
+// Whether a is at least as good as b on cost and every objective and better on one.
+bool dominates(const Lobe& a, const Lobe& b, Objective o, bool timed) {
+  const double ca = timed ? a.ns_per_eval : a.model_cost, cb = timed ? b.ns_per_eval : b.model_cost;
+  std::vector<std::pair<double, double>> axes{{ca, cb}};
+  if (o != Objective::max_rel) axes.emplace_back(a.max_abs, b.max_abs);
+  if (o != Objective::max_abs) axes.emplace_back(a.max_rel, b.max_rel);
+  bool better = false;
+  for (auto [x, y] : axes) {
+    if (x > y) return false;
+    better |= x < y;
+  }
+  return better;
+}
+
+std::vector<Lobe> pareto(std::vector<Lobe> lobes, Objective o, bool timed) {
+  std::vector<Lobe> out;
+  for (const auto& a : lobes)
+    if (std::ranges::none_of(lobes, [&](const Lobe& b) { return dominates(b, a, o, timed); })) out.push_back(a);
+  std::ranges::stable_sort(out, [&](const Lobe& a, const Lobe& b) {
+    return (timed ? a.ns_per_eval < b.ns_per_eval : a.model_cost < b.model_cost);
+  });
+  return out;
+}
+
+void set_errors(Lobe& l, const DomainError& e) {
+  l.max_abs = e.max_abs;
+  l.argmax_c = e.argmax_c;
+  l.argmax_param = e.argmax_param;
+  l.max_rel = e.max_rel;
+}
+
+// The shape fitted on the fine grid, its constants given laws, its error measured over the whole
+// domain; nullopt where a fit fails or a stop came first.
+std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> fine, const Settings& s,
+                                  const std::function<bool()>& stop) {
+  const GridFit fitted = fit_over_grid(shape, fine, s);
+  if (!fitted.ok()) return std::nullopt;
+  const auto lawful = constant_laws(shape, fine, fitted, s, stop);
+  if (!lawful || !std::isfinite(lawful->grid_error) || stop()) return std::nullopt;
+  Lobe l;
+  l.formula = expr::to_infix(lawful->lobe);
+  l.shape = shape.key;
+  l.model_cost = shape.cost;
+  set_errors(l, domain_error(lobe_of("lobe: " + l.formula, s), s, stop));
+  if (stop()) return std::nullopt;  // a measurement cut short understates
+  return l;
+}
+
+// The parameter value lobes are timed at: the benchmark's n = 20 where the range holds it, else
+// the range's middle.
+double timing_param(const Settings& s) {
+  if (s.lo <= 20 && 20 <= s.hi) return 20;
+  return s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
+}
+
+// The built-in bare lobes with the range parameter (one per family), and the spherical Gaussian
+// e^(n(c − 1)) where the parameter is n.
+std::vector<Lobe> reference_lobes(const Settings& s) {
+  std::vector<Lobe> out;
+  for (const ModelInfo& info : models()) {
+    if (!info.is_builtin() || info.kind != ModelKind::lobe || info.normalization != Normalization::none) continue;
+    const ParamInfo* p = info.find_param(s.param);
+    if (!p || !p->accepts(s.lo) || !p->accepts(s.hi)) continue;
+    Lobe l;
+    l.id = info.id;
+    l.reference = true;
+    l.formula = info.summary;
+    out.push_back(std::move(l));
+  }
+  if (s.param == "n") {
+    Lobe l;
+    l.id = "spherical-gaussian";
+    l.reference = true;
+    l.formula = "exp(n * (c - 1))";
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+bool is_formula(const Lobe& l) { return !l.reference || l.id == "spherical-gaussian"; }
+
+std::function<lobes::Lobe(double)> lobe_function(const Lobe& l, const Settings& s) {
+  if (is_formula(l)) return lobe_of("lobe: " + l.formula, s);
+  return [id = l.id, &s](double p) {
+    ParamValues params;
+    params[s.param] = p;
+    return make_model(id, params).lobe();
+  };
+}
+
+// Times every lobe in one harness: formulas compiled as native kernels, built-ins through the
+// benchmark's kernels at their fastest tier. Returns a note on how.
+std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stopper& stopper) {
+  const double p = timing_param(s);
+  std::vector<NativeLobe> natives;
+  std::vector<Lobe*> native_lobes, builtin_lobes;
+  for (Lobe* l : lobes) {
+    if (is_formula(*l)) {
+      natives.push_back({expr::parse(l->formula, {"c", s.param}), p});
+      native_lobes.push_back(l);
+    } else {
+      builtin_lobes.push_back(l);
+    }
+  }
+  std::vector<cost::FloatKernel> kernels;
+  std::vector<std::pair<Lobe*, std::string>> timed;
+  std::string note;
+  const auto work = std::filesystem::temp_directory_path() / fmt::format("specula-design-{}", getpid());
+  std::filesystem::create_directories(work);
+  std::optional<NativeKernels> compiled;
+  try {
+    compiled.emplace(natives, work, [&] { return stopper.cancelled(); });
+    for (std::size_t i = 0; i < natives.size(); ++i) {
+      native_lobes[i]->ops = compiled->operations()[i];
+      if (kernel_deviation(compiled->kernels()[i], natives[i]) > 1e-4) continue;  // not the formula: untimed
+      kernels.push_back(compiled->kernels()[i]);
+      timed.emplace_back(native_lobes[i], "native Highway kernel, float");
+    }
+    note = fmt::format("native kernels compiled by {} -O2 -march=native; built-ins by specula bench's kernels; "
+                       "ns per value in cache, one core, float, at {} = {:g}",
+                       native_compiler(), s.param, p);
+  } catch (const std::runtime_error& e) {
+    if (stopper.cancelled()) throw;
+    note = fmt::format("formula lobes not timed ({}): their cost is the cost model's", e.what());
+  }
+  for (Lobe* l : builtin_lobes) {
+    ParamValues params;
+    params[s.param] = p;
+    const lobes::Lobe lobe = make_model(l->id, params).lobe();
+    for (cost::Path path : {cost::Path::exact, cost::Path::fast}) {
+      kernels.push_back(cost::lobe_kernel(lobe, path));
+      timed.emplace_back(l, fmt::format("specula bench kernel, {} tier, float", cost::to_string(path)));
+    }
+  }
+  cost::Settings harness = cost::Settings::quick();
+  harness.trials = 7;
+  const std::vector<double> ns = cost::time_in_cache(kernels, harness);
+  for (std::size_t i = 0; i < timed.size(); ++i) {
+    Lobe* l = timed[i].first;
+    if (std::isnan(l->ns_per_eval) || ns[i] < l->ns_per_eval) {
+      l->ns_per_eval = ns[i];
+      l->timing = timed[i].second;
+    }
+  }
+  compiled.reset();
+  std::error_code ignored;
+  std::filesystem::remove_all(work, ignored);
+  return note;
+}
+
+}  // namespace
+
+int operation_cost(Operation op) {
+  switch (op) {
+    case Operation::fma:
+    case Operation::mul:
+    case Operation::add:
+    case Operation::max: return 1;
+    case Operation::div:
+    case Operation::sqrt: return 4;
+    case Operation::exp:
+    case Operation::log2: return 10;
+  }
+  unreachable();
+}
+
+std::vector<Operation> parse_operations(std::string_view text) {
+  if (text == "all") {
+    constexpr auto all = enumerators<Operation, kOperationCount>();
+    return std::vector<Operation>(all.begin(), all.end());
+  }
+  std::vector<Operation> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string_view name = text.substr(start, end - start);
+    const auto op = enum_named<Operation, kOperationCount>(name, [](Operation o) { return to_string(o); });
+    if (!op)
+      throw InvalidField("ops", fmt::format("unknown operation '{}' (known: {}, or all)", name,
+                                            names_listed<Operation, kOperationCount>(ToString{}, ", ")));
+    if (std::ranges::find(out, *op) == out.end()) out.push_back(*op);
+    start = end + 1;
+  }
+  return out;
+}
+
+void validate(const Settings& s) {
+  const auto info = model_definition(s.target, s.params);
+  if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
+  const ParamInfo* p = info->find_param(s.param);
+  if (!p) throw InvalidField("range", fmt::format("the target '{}' has no parameter '{}'", s.target, s.param));
+  if (!(s.lo < s.hi)) throw InvalidField("range", fmt::format("the range of {} is empty: {:g} to {:g}", s.param, s.lo, s.hi));
+  if (!p->accepts(s.lo) || !p->accepts(s.hi))
+    throw InvalidField("range", fmt::format("the range {:g}:{:g} is outside {}'s range {}", s.lo, s.hi, s.param, p->range_text()));
+  if (s.lo > 0 && s.hi / s.lo > Ranges::range_ratio)
+    throw InvalidField("range", fmt::format("the range spans over {:g} times", Ranges::range_ratio));
+  if (s.operations.empty()) throw InvalidField("ops", "no operations to build lobes with");
+  if (!(s.max_cost >= 1 && s.max_cost <= Ranges::max_cost))
+    throw InvalidField("max_cost", fmt::format("max_cost must be in [1, {}], got {}", Ranges::max_cost, s.max_cost));
+  if (s.max_forms && !(*s.max_forms >= 1 && *s.max_forms <= Ranges::forms))
+    throw InvalidField("max_forms", fmt::format("max_forms must be in [1, {}], got {}", Ranges::forms, *s.max_forms));
+  if (!(s.time_s > 0 && s.time_s <= Ranges::time_s))
+    throw InvalidField("time", fmt::format("time must be in (0, {:g}] seconds, got {:g}", Ranges::time_s, s.time_s));
+  if (!(s.threads >= 0 && s.threads <= Ranges::threads))
+    throw InvalidField("threads", fmt::format("threads must be in [0, {}], got {}", Ranges::threads, s.threads));
+  if (!(s.shards >= 1 && s.shards <= Ranges::shards && s.shard >= 0 && s.shard < s.shards))
+    throw InvalidField("shard", fmt::format("shard must be I/N with 0 ≤ I < N ≤ {}, got {}/{}", Ranges::shards, s.shard, s.shards));
+  if (!(s.zone > 0 && s.zone < 1)) throw InvalidField("zone", fmt::format("zone must be in (0, 1), got {:g}", s.zone));
+  for (const auto& [name, value] : s.params)
+    if (name == s.param) throw InvalidField("params", fmt::format("{} is the range parameter; give its range with --range", name));
+  (void)target_at(s, s.lo);  // the other parameters are the target's and in range
+}
+
+Result design(const Settings& s, const std::function<void(const Progress&)>& progress) {
+  validate(s);
+  const Stopper stopper(s);
+  const auto stop = [&] { return stopper.cancelled(); };
+  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
+    if (progress) progress({phase, done, total, front});
+  };
+  Result result;
+  result.settings = s;
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+
+  // 1. Every shape, this shard's share, screened on a few parameter values.
+  const auto limit = static_cast<std::size_t>(s.max_forms.value_or(Ranges::forms));
+  const std::vector<Shape> all = enumerate_shapes(s.operations, s.max_cost, std::numeric_limits<std::size_t>::max());
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < all.size() && mine.size() < limit; ++i)
+    if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);
+  result.forms_total = static_cast<std::int64_t>(mine.size());
+  const std::vector<Samples> screen = samples_over(s, kScreenGrid);
+  std::vector<Screened> screened;
+  for (std::size_t first = 0; first < mine.size(); first += kChunk) {
+    if (stopper.cancelled() || stopper.out_of_time()) {
+      result.cancelled = stopper.cancelled();
+      break;
+    }
+    const std::size_t last = std::min(mine.size(), first + kChunk);
+    std::vector<Screened> chunk(last - first);
+    arena.execute([&] {
+      tbb::parallel_for(first, last, [&](std::size_t i) { chunk[i - first] = {mine[i], fit_over_grid(all[mine[i]], screen, s)}; });
+    });
+    screened.insert(screened.end(), chunk.begin(), chunk.end());
+    result.forms_screened = static_cast<std::int64_t>(screened.size());
+    tell("screening shapes", result.forms_screened, static_cast<std::int64_t>(mine.size()), nullptr);
+  }
+
+  // 2. The promising ones on the fine grid, then laws for their constants and the whole domain.
+  const std::vector<std::size_t> candidates = promising(all, screened);
+  const std::vector<Samples> fine = samples_over(s, kFineGrid);
+  std::vector<std::optional<Lobe>> finished(candidates.size());
+  std::atomic<std::int64_t> done = 0;
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+      if (stop()) return;
+      try {
+        finished[i] = finished_lobe(all[candidates[i]], fine, s, stop);
+      } catch (const Interrupted&) {
+        return;  // a stop: the lobes finished so far are the result
+      }
+      ++done;
+    });
+  });
+  tell("finishing lobes", done, static_cast<std::int64_t>(candidates.size()), nullptr);
+  if (stopper.cancelled()) result.cancelled = true;
+
+  std::vector<Lobe> members;
+  for (auto& l : finished)
+    if (l && std::isfinite(objective_error(*l, s.objective))) members.push_back(std::move(*l));
+  members = pareto(std::move(members), s.objective, false);
+
+  // 3. The references on the same axes, and everything timed in one run.
+  result.references = reference_lobes(s);
+  if (!result.cancelled) {
+    try {
+      for (auto& r : result.references) set_errors(r, domain_error(lobe_function(r, s), s, stop));
+    } catch (const Interrupted&) {
+      result.cancelled = true;
+    }
+  }
+  if (result.cancelled || stop()) {
+    result.cancelled = true;
+    result.references.clear();  // not measured: nothing to place the front against
+  }
+  if (s.measure_cost && !result.cancelled) {
+    std::vector<Lobe*> all_lobes;
+    for (auto& m : members) all_lobes.push_back(&m);
+    for (auto& r : result.references) all_lobes.push_back(&r);
+    tell("timing", 0, static_cast<std::int64_t>(all_lobes.size()), nullptr);
+    result.cost_note = time_lobes(all_lobes, s, stopper);
+  } else {
+    result.cost_note = "not timed: cost is the cost model's";
+  }
+  const bool timed = std::ranges::all_of(members, [](const Lobe& m) { return std::isfinite(m.ns_per_eval); });
+  members = pareto(std::move(members), s.objective, timed);
+  const std::string prefix = s.target.find(':') == std::string::npos ? s.target : std::string("lobe");
+  for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
+  result.front = std::move(members);
+  result.seconds = stopper.seconds();
+  tell("done", 1, 1, &result.front);
+  return result;
+}
+
+}  // namespace specula::design

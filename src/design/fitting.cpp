@@ -1,0 +1,199 @@
+#include "fitting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <random>
+
+#include "specula/catalogue/catalogue.h"
+#include "specula/fit/fit.h"
+
+namespace specula::design {
+
+using expr::Node;
+using expr::Op;
+
+namespace {
+
+constexpr int kRandomStarts = 4;  // at the first grid value, besides the identity
+constexpr std::size_t kWidthRows = 64, kUniformRows = 33;
+constexpr double kWidths = 12;  // rows in u reach 12 half-maximum widths (cⁿ is 2.4e-4 there)
+
+// u where the target falls to half its peak; inf where it never does on (0, 745].
+double half_max_u(const lobes::Lobe& target) {
+  const double peak = lobes::at_log_cos(target, 0);
+  double hi = 1e-12;
+  while (lobes::at_log_cos(target, hi) > peak / 2) {
+    hi *= 2;
+    if (hi > 745) return INFINITY;
+  }
+  double lo = 0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = (lo + hi) / 2;
+    (lobes::at_log_cos(target, mid) > peak / 2 ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+fit::Metric metric_of(const Settings& s) {
+  return s.objective == Objective::max_rel ? fit::Metric::max_rel : fit::Metric::max_abs;
+}
+
+// The shape's expression with the first `fixed` constants turned into variables k0, k1, … after c.
+expr::Expression with_fixed(const Shape& shape, std::size_t fixed, std::span<const double> free_values) {
+  std::vector<Node> nodes = shape.nodes;
+  std::vector<std::string> variables{"c"};
+  for (std::size_t k = 0; k < fixed; ++k) variables.push_back(fmt::format("k{}", k));
+  std::size_t index = 0, free_index = 0;
+  for (auto& n : nodes)
+    if (n.op == Op::constant && !expr::is_exact(n)) {
+      if (index < fixed) n = {Op::variable, static_cast<std::uint32_t>(index + 1), 0};
+      else n.value = free_values[free_index++];
+      ++index;
+    }
+  return expr::Expression(std::move(nodes), std::move(variables));
+}
+
+std::vector<double> free_values(const expr::Expression& e) {
+  std::vector<double> out;
+  for (const auto& n : e.nodes())
+    if (n.op == Op::constant && !expr::is_exact(n)) out.push_back(n.value);
+  return out;
+}
+
+// The identity start: every affine map a·x + b at a = 1, b = 0.
+std::vector<double> identity_start(const Shape& shape) {
+  std::vector<double> out;
+  for (const auto& n : shape.nodes)
+    if (n.op == Op::constant && !expr::is_exact(n)) out.push_back(n.value);
+  return out;
+}
+
+struct Fitted {
+  std::vector<double> constants;  // every constant, fixed ones included
+  double error = INFINITY;
+};
+
+double lobe_error(const expr::Expression& e, const fit::Data& data, const Settings& s, std::span<const double> target) {
+  std::vector<std::span<const double>> columns;
+  for (const auto& c : data.columns) columns.emplace_back(c);
+  std::vector<double> values(target.size());
+  expr::evaluate_batch(e, columns, values);
+  double worst = 0;
+  for (std::size_t r = 0; r < values.size(); ++r) {
+    if (!std::isfinite(values[r]) || values[r] < 0) return INFINITY;
+    const double d = std::abs(values[r] - target[r]);
+    worst = std::max(worst, s.objective == Objective::max_rel ? d / target[r] : d);
+  }
+  return worst;
+}
+
+fit::Data data_for(const Samples& rows, std::span<const double> fixed) {
+  fit::Data data;
+  data.variables.push_back("c");
+  data.columns.push_back(rows.c);
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
+    data.variables.push_back(fmt::format("k{}", k));
+    data.columns.emplace_back(rows.c.size(), fixed[k]);
+  }
+  data.target = rows.value;
+  return data;
+}
+
+Fitted fit_once(const Shape& shape, const Samples& rows, const Settings& s, std::span<const double> fixed,
+                std::span<const double> start) {
+  const fit::Data data = data_for(rows, fixed);
+  expr::Expression e = with_fixed(shape, fixed.size(), start);
+  if (shape.constants > static_cast<int>(fixed.size())) e = fit::fit_formula_constants(e, data, metric_of(s)).formula;
+  Fitted out;
+  out.constants.assign(fixed.begin(), fixed.end());
+  for (double v : free_values(e)) out.constants.push_back(v);
+  out.error = lobe_error(e, data, s, rows.value);
+  return out;
+}
+
+}  // namespace
+
+lobes::Lobe target_at(const Settings& s, double p) {
+  ParamValues params = s.params;
+  params[s.param] = p;
+  const Model m = make_model(s.target, params, s.form);
+  if (!m.is_lobe()) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
+  return m.lobe();
+}
+
+std::vector<double> param_grid(double lo, double hi, std::size_t count) {
+  std::vector<double> out;
+  if (count == 1 || lo == hi) return {lo};
+  const bool log = lo > 0 && hi / lo >= 4;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(count - 1);
+    out.push_back(i + 1 == count ? hi : log ? lo * std::pow(hi / lo, t) : lo + (hi - lo) * t);
+  }
+  return out;
+}
+
+Samples samples_at(const Settings& s, double p) {
+  Samples out{p, target_at(s, p), {}, {}};
+  const double width = half_max_u(out.target);
+  const auto add = [&](double u) {
+    const double value = lobes::at_log_cos(out.target, u);
+    if (!std::isfinite(value)) return;
+    if (s.objective == Objective::max_rel && !(value >= s.zone)) return;
+    out.c.push_back(std::exp(-u));
+    out.value.push_back(value);
+  };
+  if (std::isfinite(width))
+    for (std::size_t i = 0; i < kWidthRows; ++i) {
+      const double t = static_cast<double>(i) / static_cast<double>(kWidthRows - 1);
+      add(kWidths * width * t * t);  // denser near the peak
+    }
+  for (std::size_t i = 0; i < kUniformRows; ++i) {
+    const double c = static_cast<double>(i) / static_cast<double>(kUniformRows - 1);
+    add(c > 0 ? -std::log(c) : 745.0);
+  }
+  if (out.c.empty()) throw InvalidField("target", fmt::format("the target is nowhere ≥ the zone at {} = {:g}", s.param, p));
+  return out;
+}
+
+double shape_error(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s) {
+  return lobe_error(with_constants(shape, constants), data_for(rows, {}), s, rows.value);
+}
+
+GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
+                      std::span<const std::vector<double>> fixed) {
+  GridFit out;
+  const auto fixed_at = [&](std::size_t i) { return fixed.empty() ? std::span<const double>() : std::span<const double>(fixed[i]); };
+  std::mt19937_64 rng(s.seed ^ std::hash<std::string>{}(shape.key));
+  const std::vector<double> identity = identity_start(shape);
+  std::vector<double> previous;  // the free constants of the last grid value
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const std::size_t held = fixed_at(i).size();
+    const std::vector<double> identity_free(identity.begin() + static_cast<std::ptrdiff_t>(held), identity.end());
+    std::vector<std::vector<double>> starts{identity_free};
+    if (!previous.empty()) starts.push_back(previous);
+    if (i == 0 && !identity_free.empty())
+      for (int k = 0; k < kRandomStarts; ++k) {
+        std::vector<double> start;
+        for (std::size_t j = 0; j < identity_free.size(); ++j)
+          start.push_back((rng() & 1 ? 1 : -1) * std::exp(std::uniform_real_distribution<double>(-2, 4)(rng)));
+        starts.push_back(std::move(start));
+      }
+    Fitted best;
+    for (const auto& start : starts) {
+      Fitted f = fit_once(shape, grid[i], s, fixed_at(i), start);
+      if (f.error < best.error) best = std::move(f);
+    }
+    if (best.constants.empty()) best.constants = identity;
+    previous.assign(best.constants.begin() + static_cast<std::ptrdiff_t>(held), best.constants.end());
+    out.constants.push_back(best.constants);
+    out.error.push_back(best.error);
+  }
+  out.worst = 0;
+  for (double e : out.error) out.worst = std::max(out.worst, e);
+  if (std::isnan(out.worst)) out.worst = INFINITY;
+  return out;
+}
+
+}  // namespace specula::design

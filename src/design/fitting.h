@@ -1,0 +1,51 @@
+#pragma once
+// Fitting a shape's constants per parameter value: the target sampled where it lives (in
+// u = −ln c scaled to its half-maximum width, and uniformly in c for the tails), constants fitted
+// for the largest error (fit::fit_formula_constants, minimax) at the lowest parameter value from
+// several starts, then carried up the grid, each fit starting from its neighbour's constants.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "shapes.h"
+#include "specula/design/design.h"
+#include "specula/lobes/lobes.h"
+
+namespace specula::design {
+
+/// The target at one parameter value, as the fits see it.
+struct Samples {
+  double param = 0;
+  lobes::Lobe target;
+  std::vector<double> c, value;  ///< rows: cosines and the target there
+};
+
+/// The target lobe at parameter value `p` (Settings' model, params and form). Throws
+/// InvalidField "target" if the model is not a lobe.
+lobes::Lobe target_at(const Settings& s, double p);
+
+/// `count` parameter values over [lo, hi]: log-spaced when lo > 0 and hi/lo ≥ 4, else even.
+std::vector<double> param_grid(double lo, double hi, std::size_t count);
+
+/// The rows the fits use at p: for max_rel only those where the target is ≥ zone.
+Samples samples_at(const Settings& s, double p);
+
+/// A shape's constants at each grid value, and the error each fit reached.
+struct GridFit {
+  std::vector<std::vector<double>> constants;  ///< [grid index][constant]
+  std::vector<double> error;                   ///< the objective's error per grid value (inf: failed)
+  double worst = INFINITY;                     ///< the largest of them
+
+  bool ok() const { return std::isfinite(worst); }
+};
+
+/// Fits `shape` at every grid value. `fixed` (same length as the grid, or empty) gives the
+/// values of the first fixed.size() constants at each grid value: those are held, the rest fitted.
+/// A fit whose lobe is negative or not finite somewhere on the rows counts as failed (inf).
+GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
+                      std::span<const std::vector<double>> fixed = {});
+
+/// The objective's error of `shape` with `constants` on the rows (inf where negative or not finite).
+double shape_error(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s);
+
+}  // namespace specula::design

@@ -1,0 +1,112 @@
+#include "laws.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "specula/fit/fit.h"
+
+namespace specula::design {
+
+using expr::Node;
+using expr::Op;
+
+namespace {
+
+// Generations of each law's search: a budget in generations, so the result is the same for any
+// machine and thread count.
+constexpr std::int64_t kLawGenerations = 40;
+constexpr int kLawMaxSize = 13;
+constexpr double kLawSlack = 0.02;  // a law may raise the lobe's grid error by 2 %
+
+fit::Options law_options(const Settings& s) {
+  fit::Options o;
+  o.operators = {Op::add, Op::sub, Op::mul, Op::div, Op::sqrt, Op::log};
+  o.max_size = kLawMaxSize;
+  o.metric = fit::Metric::max_abs;
+  o.seed = s.seed;
+  o.max_generations = kLawGenerations;
+  o.time_limit_s = 120;
+  o.threads = 1;
+  o.islands = 2;
+  o.population = 100;
+  o.enumerate_max_size = 7;
+  o.enumerate_limit = 3000;
+  o.cancel = s.cancel;
+  return o;
+}
+
+// Evaluates a law (an expression in the parameter) at p.
+double law_at(const expr::Expression& law, double p) {
+  const double x[] = {p};
+  return expr::evaluate(law, x);
+}
+
+double grid_error(const Shape& shape, std::span<const Samples> grid, const std::vector<std::vector<double>>& constants,
+                  const Settings& s) {
+  double worst = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) worst = std::max(worst, shape_error(shape, constants[i], grid[i], s));
+  return std::isnan(worst) ? INFINITY : worst;
+}
+
+}  // namespace
+
+expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expression> laws, const std::string& param) {
+  std::vector<Node> nodes;
+  std::size_t k = 0;
+  for (const auto& n : shape.nodes) {
+    if (n.op == Op::constant && !expr::is_exact(n)) {
+      for (Node m : laws[k].nodes()) {
+        if (m.op == Op::variable) m.var = 1;  // the parameter, after c
+        nodes.push_back(m);
+      }
+      ++k;
+    } else {
+      nodes.push_back(n);
+    }
+  }
+  return expr::Expression(std::move(nodes), {"c", param});
+}
+
+std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples> grid, const GridFit& fitted,
+                                    const Settings& s, const std::function<bool()>& stop) {
+  std::vector<double> params;
+  for (const auto& g : grid) params.push_back(g.param);
+  std::vector<std::vector<double>> constants = fitted.constants;
+  std::vector<expr::Expression> laws;
+  const auto constant_count = static_cast<std::size_t>(shape.constants);
+  for (std::size_t k = 0; k < constant_count; ++k) {
+    if (stop()) return std::nullopt;
+    fit::Data data{{s.param}, {params}, {}};
+    for (const auto& c : constants) data.target.push_back(c[k]);
+    const fit::Result found = fit::search(data, law_options(s));
+    if (found.stopped_by == fit::StopReason::cancelled) return std::nullopt;
+    // The first formula (smallest) whose lobe is within the slack of the per-value optimum, else
+    // the most accurate one.
+    const double within = grid_error(shape, grid, constants, s) * (1 + kLawSlack);
+    std::optional<expr::Expression> chosen;
+    std::vector<std::vector<double>> chosen_constants;
+    double chosen_error = INFINITY;
+    for (const auto& candidate : found.front) {
+      auto trial = constants;
+      for (std::size_t i = 0; i < grid.size(); ++i) trial[i][k] = law_at(candidate.formula, params[i]);
+      const double error = grid_error(shape, grid, trial, s);
+      if (error < chosen_error) {
+        chosen = candidate.formula;
+        chosen_constants = std::move(trial);
+        chosen_error = error;
+      }
+      if (chosen_error <= within) break;
+    }
+    if (!chosen) return std::nullopt;
+    laws.push_back(*chosen);
+    // The constants after k refitted per value with 0 … k held.
+    std::vector<std::vector<double>> held;
+    for (const auto& c : chosen_constants) held.emplace_back(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k + 1));
+    if (k + 1 < constant_count) constants = fit_over_grid(shape, grid, s, held).constants;
+    else constants = std::move(chosen_constants);
+  }
+  Lawful out{substitute_laws(shape, laws, s.param), grid_error(shape, grid, constants, s)};
+  return out;
+}
+
+}  // namespace specula::design

@@ -1,0 +1,311 @@
+#include "native.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fstream>
+#include <signal.h>
+#include <spawn.h>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "specula/exceptions.h"
+
+extern char** environ;
+
+namespace specula::design {
+
+using expr::Node;
+using expr::Op;
+
+namespace {
+
+constexpr auto kCompileLimit = std::chrono::minutes(5);
+
+// A value of the formula while it is written out: a uniform (a scalar C++ expression in the
+// parameter p, computed once per call) or a vector expression in x (the cosine's lanes).
+struct Value {
+  Value(bool is_uniform, std::string value_text) : uniform(is_uniform), text(std::move(value_text)) {}
+  bool uniform = true;
+  std::string text;
+  std::string mul_left, mul_right;  // set when the vector text is hn::Mul(left, right)
+};
+
+// A double literal (never an integer one: 14 / 9 is not 1).
+std::string literal(double v) {
+  std::string text = fmt::format("{:.17g}", v);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string scalar_call(Op op, const std::string& a) {
+  return fmt::format("std::{}({})", expr::function_name(op), a);
+}
+
+Value scalar(Op op, const Value& a, const Value* b) {
+  switch (op) {
+    case Op::add: return {true, "(" + a.text + " + " + b->text + ")"};
+    case Op::sub: return {true, "(" + a.text + " - " + b->text + ")"};
+    case Op::mul: return {true, "(" + a.text + " * " + b->text + ")"};
+    case Op::div: return {true, "(" + a.text + " / " + b->text + ")"};
+    case Op::pow: return {true, "std::pow(" + a.text + ", " + b->text + ")"};
+    case Op::min: return {true, "std::fmin(" + a.text + ", " + b->text + ")"};
+    case Op::max: return {true, "std::fmax(" + a.text + ", " + b->text + ")"};
+    case Op::neg: return {true, "(-" + a.text + ")"};
+    case Op::constant:
+    case Op::variable: break;
+    default: return {true, scalar_call(op, a.text)};
+  }
+  unreachable();
+}
+
+class Writer {
+ public:
+  explicit Writer(std::size_t index) : index_(index) {}
+
+  // The function's text; `operations` counts its vector operations.
+  std::string function(const expr::Expression& formula, int& operations) {
+    std::vector<Value> stack;
+    for (const Node& n : formula.nodes()) {
+      switch (expr::arity(n.op)) {
+        case 0:
+          stack.push_back(n.op == Op::constant ? Value{true, literal(n.value)}
+                          : n.var == 0         ? Value{false, "x"}
+                                               : Value{true, "p"});
+          break;
+        case 1: {
+          Value a = std::move(stack.back());
+          stack.back() = apply(n.op, a, nullptr);
+          break;
+        }
+        default: {
+          Value b = std::move(stack.back());
+          stack.pop_back();
+          Value a = std::move(stack.back());
+          stack.back() = apply(n.op, a, &b);
+        }
+      }
+    }
+    operations = operations_;
+    Value result = stack.back();
+    if (result.uniform) result.text = vector_of(result);
+    std::string out = fmt::format(
+        "extern \"C\" void specula_lobe_{}(const float* c, float* out, std::size_t count, double p) {{\n"
+        "  const hn::ScalableTag<float> d;\n"
+        "  const auto zero = hn::Zero(d);\n"
+        "  const auto one = hn::Set(d, 1.0f);\n",
+        index_);
+    for (const auto& u : uniforms_) out += "  " + u + "\n";
+    out += fmt::format(
+        "  const auto lobe = [&](hn::Vec<decltype(d)> c_lanes) {{\n"
+        "    const auto x = hn::Min(c_lanes, one);\n"
+        "    return hn::IfThenZeroElse(hn::Le(c_lanes, zero), {});\n"
+        "  }};\n"
+        "  const std::size_t lanes = hn::Lanes(d);\n"
+        "  std::size_t i = 0;\n"
+        "  for (; i + lanes <= count; i += lanes) hn::StoreU(lobe(hn::LoadU(d, c + i)), d, out + i);\n"
+        "  if (i < count) {{\n"
+        "    alignas(64) float in[64] = {{}}, result[64];\n"
+        "    for (std::size_t k = i; k < count; ++k) in[k - i] = c[k];\n"
+        "    hn::Store(lobe(hn::Load(d, in)), d, result);\n"
+        "    for (std::size_t k = i; k < count; ++k) out[k] = result[k - i];\n"
+        "  }}\n"
+        "  (void)p;\n"
+        "}}\n",
+        result.text);
+    return out;
+  }
+
+ private:
+  std::string vector_of(const Value& v) {
+    if (!v.uniform) return v.text;
+    const std::string name = fmt::format("u{}", uniforms_.size());
+    uniforms_.push_back(fmt::format("const auto {} = hn::Set(d, static_cast<float>({}));", name, v.text));
+    return name;
+  }
+
+  Value vector(std::string text) {
+    ++operations_;
+    return {false, std::move(text)};
+  }
+
+  // An FMA in place of the product it absorbs (counted already).
+  Value fused(std::string text) {
+    --operations_;
+    return vector(std::move(text));
+  }
+
+  // x^k for an integer k, 1 ≤ k ≤ 32, by squaring.
+  Value power(const std::string& x, int k) {
+    std::string result, square = x;
+    for (; k > 0; k >>= 1) {
+      if (k & 1) result = result.empty() ? square : vector("hn::Mul(" + result + ", " + square + ")").text;
+      if (k > 1) square = vector("hn::Mul(" + square + ", " + square + ")").text;
+    }
+    return {false, result};
+  }
+
+  Value apply(Op op, const Value& a, const Value* b) {
+    if (a.uniform && (!b || b->uniform)) return scalar(op, a, b);
+    if (op == Op::pow && b->uniform) {
+      char* end = nullptr;
+      const double k = std::strtod(b->text.c_str(), &end);
+      if (end && *end == 0 && k == std::round(k) && k >= 1 && k <= 32) return power(a.text, static_cast<int>(k));
+    }
+    if (op == Op::add) {  // a·u + v as one FMA
+      if (!a.mul_left.empty()) return fused(fmt::format("hn::MulAdd({}, {}, {})", a.mul_left, a.mul_right, vector_of(*b)));
+      if (!b->mul_left.empty()) return fused(fmt::format("hn::MulAdd({}, {}, {})", b->mul_left, b->mul_right, vector_of(a)));
+    }
+    if (op == Op::sub) {  // a·u − v and v − a·u as one FMA
+      if (!a.mul_left.empty()) return fused(fmt::format("hn::MulSub({}, {}, {})", a.mul_left, a.mul_right, vector_of(*b)));
+      if (!b->mul_left.empty()) return fused(fmt::format("hn::NegMulAdd({}, {}, {})", b->mul_left, b->mul_right, vector_of(a)));
+    }
+    const std::string x = vector_of(a);
+    const std::string y = b ? vector_of(*b) : "";
+    switch (op) {
+      case Op::add: return vector("hn::Add(" + x + ", " + y + ")");
+      case Op::sub: return vector("hn::Sub(" + x + ", " + y + ")");
+      case Op::mul: {
+        Value v = vector("hn::Mul(" + x + ", " + y + ")");
+        v.mul_left = x;
+        v.mul_right = y;
+        return v;
+      }
+      case Op::div: return vector("hn::Div(" + x + ", " + y + ")");
+      case Op::min: return vector("hn::Min(" + x + ", " + y + ")");
+      case Op::max: return vector("hn::Max(" + x + ", " + y + ")");
+      case Op::pow: return vector("hn::Exp(d, hn::Mul(" + y + ", hn::Log(d, " + x + ")))");
+      case Op::neg: return vector("hn::Neg(" + x + ")");
+      case Op::abs: return vector("hn::Abs(" + x + ")");
+      case Op::sqrt: return vector("hn::Sqrt(" + x + ")");
+      case Op::exp: return vector("hn::Exp(d, " + x + ")");
+      case Op::log: return vector("hn::Log(d, " + x + ")");
+      case Op::log2: return vector("hn::Log2(d, " + x + ")");
+      case Op::expm1: return vector("hn::Expm1(d, " + x + ")");
+      case Op::log1p: return vector("hn::Log1p(d, " + x + ")");
+      case Op::sin: return vector("hn::Sin(d, " + x + ")");
+      case Op::cos: return vector("hn::Cos(d, " + x + ")");
+      case Op::acos: return vector("hn::Acos(d, " + x + ")");
+      case Op::asin: return vector("hn::Asin(d, " + x + ")");
+      case Op::constant:
+      case Op::variable: break;
+    }
+    unreachable();
+  }
+
+  std::size_t index_;
+  int operations_ = 0;
+  std::vector<std::string> uniforms_;
+};
+
+// Runs argv with stderr to `log`; its exit status, or throws past the limit or on `stop`.
+int run_process(const std::vector<std::string>& argv, const std::filesystem::path& log, const std::function<bool()>& stop) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", argv[0], std::strerror(spawned)));
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    if (stop() || std::chrono::steady_clock::now() - start > kCompileLimit) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      throw std::runtime_error(stop() ? "stopped while compiling" : "the compiler took over 5 minutes");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+std::string first_error(const std::filesystem::path& log) {
+  std::ifstream in(log);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.find("error") != std::string::npos) return line;
+  return "no message";
+}
+
+}  // namespace
+
+NativeSource native_source(const std::vector<NativeLobe>& lobes) {
+  NativeSource out;
+  out.text =
+      "// Generated by specula design: the designed lobes as Highway kernels in float lanes.\n"
+      "#include <cmath>\n#include <cstddef>\n"
+      "#include \"hwy/highway.h\"\n#include \"hwy/contrib/math/math-inl.h\"\n"
+      "namespace hn = hwy::HWY_NAMESPACE;\n\n";
+  for (std::size_t i = 0; i < lobes.size(); ++i) {
+    int operations = 0;
+    out.text += Writer(i).function(lobes[i].formula, operations) + "\n";
+    out.operations.push_back(operations);
+  }
+  return out;
+}
+
+std::string native_compiler() {
+  for (const char* candidate : std::array<const char*, 2>{std::getenv("SPECULA_CXX"), SPECULA_CXX}) {
+    if (!candidate || !*candidate) continue;
+    if (access(candidate, X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
+NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::filesystem::path& work_dir,
+                             const std::function<bool()>& stop) {
+  const std::string compiler = native_compiler();
+  if (compiler.empty()) throw std::runtime_error("no C++ compiler found (SPECULA_CXX or " SPECULA_CXX ")");
+  const NativeSource source = native_source(lobes);
+  const auto cpp = work_dir / "lobes.cpp", so = work_dir / "lobes.so", log = work_dir / "compile.log";
+  std::ofstream(cpp) << source.text;
+  const int status = run_process({compiler, "-std=gnu++20", "-O2", "-march=native", "-fPIC", "-shared", "-o",
+                                  so.string(), cpp.string()},
+                                 log, stop);
+  if (status != 0) throw std::runtime_error(fmt::format("compiling the kernels failed: {}", first_error(log)));
+  library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!library_) throw std::runtime_error(fmt::format("loading the kernels failed: {}", dlerror()));
+  using Function = void (*)(const float*, float*, std::size_t, double);
+  for (std::size_t i = 0; i < lobes.size(); ++i) {
+    auto f = reinterpret_cast<Function>(dlsym(library_, fmt::format("specula_lobe_{}", i).c_str()));
+    if (!f) throw std::runtime_error("a kernel is missing from the compiled library");
+    kernels_.push_back([f, p = lobes[i].param](std::span<const float> c, std::span<float> out) {
+      f(c.data(), out.data(), std::min(c.size(), out.size()), p);
+    });
+  }
+  operations_ = source.operations;
+}
+
+NativeKernels::~NativeKernels() {
+  kernels_.clear();
+  if (library_) dlclose(library_);
+}
+
+double kernel_deviation(const cost::FloatKernel& kernel, const NativeLobe& lobe) {
+  constexpr std::size_t kPoints = 4099;
+  std::vector<float> c(kPoints), out(kPoints);
+  for (std::size_t i = 0; i < kPoints; ++i) c[i] = static_cast<float>(static_cast<double>(i) / (kPoints - 1));
+  kernel(c, out);
+  double worst = 0;
+  for (std::size_t i = 0; i < kPoints; ++i) {
+    const double x[] = {static_cast<double>(c[i]), lobe.param};
+    const double expected = c[i] <= 0 ? 0 : expr::evaluate(lobe.formula, x);
+    const double d = std::abs(static_cast<double>(out[i]) - expected);
+    if (std::isfinite(expected)) worst = std::max(worst, std::isnan(d) ? INFINITY : d);
+  }
+  return worst;
+}
+
+}  // namespace specula::design

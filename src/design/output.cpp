@@ -1,0 +1,115 @@
+#include "specula/design/output.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "specula/catalogue/catalogue.h"
+#include "specula/fit/fit.h"
+#include "specula/io/files.h"
+
+namespace specula::design {
+
+namespace {
+
+// Full precision: a rounded maximum could understate it.
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.17g}", v) : std::string(); }
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string toml_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+double log_ns(const Result& r) {
+  for (const auto& l : r.references)
+    if (l.id == "log") return l.ns_per_eval;
+  return NAN;
+}
+
+std::string row(const Lobe& l, double log) {
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
+                     csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
+                     number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
+                     l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
+                     l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing));
+}
+
+Form target_form(const Settings& s) {
+  if (s.form) return *s.form;
+  ParamValues params = s.params;
+  params[s.param] = s.lo;
+  const Model m = make_model(s.target, params);
+  return m.is_lobe() ? m.form() : Form::rv;
+}
+
+// A member's formula with constants to 6 digits (the files hold them in full).
+std::string shown(const Lobe& l) {
+  if (l.reference) return l.formula;
+  return expr::to_infix(fit::rounded(expr::parse(l.formula), 6));
+}
+
+}  // namespace
+
+std::string front_csv(const Result& result) {
+  std::string out =
+      "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
+      "spirv_instructions,model_cost,shape,timing\n";
+  const double log = log_ns(result);
+  for (const auto& l : result.front) out += row(l, log);
+  for (const auto& l : result.references) out += row(l, log);
+  return out;
+}
+
+std::string models_toml(const Result& result) {
+  const Settings& s = result.settings;
+  std::string out = fmt::format("# Lobes designed by specula design against {} over {} in [{:g}, {:g}] ({}).\n",
+                                s.target, s.param, s.lo, s.hi, to_string(s.objective));
+  const double p = s.lo <= 20 && 20 <= s.hi ? 20 : s.lo;
+  for (const auto& l : result.front) {
+    for (bool normalized : {false, true}) {
+      out += fmt::format(
+          "\n[[model]]\nid = {}\nname = {}\nsource = \"specula design\"\nsummary = {}\nkind = \"lobe\"\nform = \"{}\"\n"
+          "lobe = {}\nnormalization = \"{}\"\n[model.params.{}]\ndefault = {:.17g}\nmin = {:.17g}\nmax = {:.17g}\n",
+          toml_string(normalized ? l.id + "-normalized" : l.id),
+          toml_string(fmt::format("designed lobe {}{}", l.id, normalized ? ", normalized" : "")),
+          toml_string(fmt::format("max |F − {}| = {:.4g} over {} in [{:g}, {:g}]", s.target, l.max_abs, s.param, s.lo, s.hi)),
+          to_string(target_form(s)), toml_string(l.formula), normalized ? "quadrature" : "none", s.param, p, s.lo, s.hi);
+    }
+  }
+  return out;
+}
+
+std::string front_table(const Result& result) {
+  std::string out = fmt::format("{:<22} {:>10} {:>10} {:>9} {:>8} {:>4}  {}\n", "id", "max_abs", "max_rel", "ns/eval",
+                                "vs log", "ops", "formula");
+  const double log = log_ns(result);
+  const auto line = [&](const Lobe& l) {
+    out += fmt::format("{:<22} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>4}  {}\n", l.id, l.max_abs, l.max_rel,
+                       std::isfinite(l.ns_per_eval) ? fmt::format("{:.3f}", l.ns_per_eval) : "-",
+                       std::isfinite(l.ns_per_eval / log) ? fmt::format("{:.2f}", l.ns_per_eval / log) : "-",
+                       l.ops > 0 ? std::to_string(l.ops) : "-", shown(l));
+  };
+  for (const auto& l : result.front) line(l);
+  out += "references:\n";
+  for (const auto& l : result.references) line(l);
+  return out;
+}
+
+void write_outputs(const Result& result, const std::filesystem::path& dir) {
+  io::StagedDirectory staged(dir);
+  io::write_file_atomically(staged.path() / "front.csv", front_csv(result));
+  io::write_file_atomically(staged.path() / "models.toml", models_toml(result));
+  staged.commit();
+}
+
+}  // namespace specula::design

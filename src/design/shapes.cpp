@@ -1,0 +1,164 @@
+// Exhaustive enumeration of lobe shapes by cost, bottom-up as fit's enumeration of forms: every
+// shape of cost k is a step applied to shapes of cost k − (the step's cost), or a binary step
+// joining two shapes whose costs add up. Steps that give back what a cheaper shape already is
+// (an affine map of an affine map, a clamp of something ≥ 0, √(x²), (√x)²) are not taken.
+#include "shapes.h"
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "specula/exceptions.h"
+
+namespace specula::design {
+
+using expr::Node;
+using expr::Op;
+using Step = Shape::Step;
+
+namespace {
+
+Node constant(double value) { return {Op::constant, 0, value}; }
+Node exact(int value) { return expr::exact_constant(value, 1, expr::Symbol::one); }
+Node op(Op o) { return {o, 0, 0}; }
+
+std::string key_of(const std::vector<Node>& nodes) {
+  std::vector<Node> printed = nodes;
+  // Every free constant prints as the same number, so the key is the structure alone.
+  for (auto& n : printed)
+    if (n.op == Op::constant && !expr::is_exact(n)) n.value = 7;
+  return expr::to_infix(expr::Expression(std::move(printed), {"c"}));
+}
+
+Shape leaf() {
+  Shape s;
+  s.nodes = {{Op::variable, 0, 0}};
+  s.key = key_of(s.nodes);
+  s.nonnegative = true;
+  return s;
+}
+
+Shape unary(const Shape& x, Step step, int cost) {
+  Shape s;
+  s.nodes = x.nodes;
+  s.constants = x.constants;
+  switch (step) {
+    case Step::affine:
+      s.nodes.insert(s.nodes.end(), {constant(1), op(Op::mul), constant(0), op(Op::add)});
+      s.constants += 2;
+      break;
+    case Step::square: s.nodes.insert(s.nodes.end(), {exact(2), op(Op::pow)}); break;
+    case Step::clamp: s.nodes.insert(s.nodes.end(), {exact(0), op(Op::max)}); break;
+    case Step::sqrt: s.nodes.push_back(op(Op::sqrt)); break;
+    case Step::exp: s.nodes.push_back(op(Op::exp)); break;
+    case Step::log2: s.nodes.push_back(op(Op::log2)); break;
+    case Step::leaf:
+    case Step::product:
+    case Step::sum:
+    case Step::quotient: throw std::logic_error("not a unary step");
+  }
+  s.step = step;
+  s.cost = x.cost + cost;
+  s.nonnegative = step == Step::square || step == Step::clamp || step == Step::sqrt || step == Step::exp;
+  s.key = key_of(s.nodes);
+  return s;
+}
+
+Shape binary(const Shape& x, const Shape& y, Step step, int cost) {
+  Shape s;
+  s.nodes = x.nodes;
+  s.nodes.insert(s.nodes.end(), y.nodes.begin(), y.nodes.end());
+  s.nodes.push_back(op(step == Step::product ? Op::mul : step == Step::sum ? Op::add : Op::div));
+  s.constants = x.constants + y.constants;
+  s.step = step;
+  s.cost = x.cost + y.cost + cost;
+  s.nonnegative = x.nonnegative && y.nonnegative;
+  s.key = key_of(s.nodes);
+  return s;
+}
+
+// Whether `step` on x gives a shape no cheaper shape already is.
+bool worth_applying(Step step, const Shape& x) {
+  switch (step) {
+    case Step::affine: return x.step != Step::affine;  // a(bx + c) + d is one affine map
+    case Step::clamp: return !x.nonnegative;
+    case Step::square: return x.step != Step::sqrt;
+    case Step::sqrt: return x.step != Step::square;
+    case Step::exp: return x.step != Step::log2;
+    case Step::log2: return x.step != Step::exp;
+    case Step::leaf:
+    case Step::product:
+    case Step::sum:
+    case Step::quotient: return true;
+  }
+  return true;
+}
+
+struct UnaryStep {
+  Operation operation;
+  Step step;
+};
+constexpr UnaryStep kUnary[] = {{Operation::fma, Step::affine}, {Operation::mul, Step::square},
+                                {Operation::max, Step::clamp},  {Operation::sqrt, Step::sqrt},
+                                {Operation::exp, Step::exp},    {Operation::log2, Step::log2}};
+struct BinaryStep {
+  Operation operation;
+  Step step;
+  bool commutative;
+};
+constexpr BinaryStep kBinary[] = {{Operation::mul, Step::product, true},
+                                  {Operation::add, Step::sum, true},
+                                  {Operation::div, Step::quotient, false}};
+
+}  // namespace
+
+expr::Expression Shape::expression() const { return expr::Expression(nodes, {"c"}); }
+
+expr::Expression with_constants(const Shape& shape, std::span<const double> values) {
+  std::vector<Node> nodes = shape.nodes;
+  std::size_t k = 0;
+  for (auto& n : nodes)
+    if (n.op == Op::constant && !expr::is_exact(n)) {
+      if (k >= values.size()) throw InvalidArgument("fewer constant values than the shape's constants");
+      n.value = values[k++];
+    }
+  return expr::Expression(std::move(nodes), {"c"});
+}
+
+std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit) {
+  const auto allowed = [&](Operation o) { return std::ranges::find(operations, o) != operations.end(); };
+  std::vector<std::vector<Shape>> by_cost(static_cast<std::size_t>(std::max(max_cost, 0)) + 1);
+  std::vector<Shape> all;
+  std::unordered_set<std::string> seen;
+  const auto full = [&] { return all.size() >= limit; };
+  const auto add = [&](Shape s) {
+    if (full() || s.constants > kMaxShapeConstants || s.cost > max_cost || !seen.insert(s.key).second) return;
+    by_cost[static_cast<std::size_t>(s.cost)].push_back(s);
+    all.push_back(std::move(s));
+  };
+  add(leaf());
+  for (int cost = 1; cost <= max_cost && !full(); ++cost) {
+    for (const auto& u : kUnary) {
+      const int step_cost = operation_cost(u.operation);
+      if (!allowed(u.operation) || step_cost > cost) continue;
+      for (const auto& x : by_cost[static_cast<std::size_t>(cost - step_cost)])
+        if (worth_applying(u.step, x)) add(unary(x, u.step, step_cost));
+    }
+    for (const auto& b : kBinary) {
+      const int step_cost = operation_cost(b.operation);
+      if (!allowed(b.operation)) continue;
+      for (int left = 0; left <= cost - step_cost; ++left) {
+        const int right = cost - step_cost - left;
+        for (const auto& x : by_cost[static_cast<std::size_t>(left)])
+          for (const auto& y : by_cost[static_cast<std::size_t>(right)]) {
+            if (full()) break;
+            if (b.commutative && !(x.key < y.key)) continue;  // x·y once; x·x is the square
+            if (b.step == Step::quotient && x.key == y.key) continue;
+            add(binary(x, y, b.step, step_cost));
+          }
+      }
+    }
+  }
+  return all;
+}
+
+}  // namespace specula::design

@@ -1,0 +1,39 @@
+#pragma once
+// The designer's search space: lobe shapes F(c) built from c by the operations shaders and SIMD
+// units have, each with free constants that the designer fits per parameter value (a material's
+// uniforms, not charged per evaluation). Shapes are enumerated exhaustively in order of a cost
+// model, cheapest first, one shape per canonical text.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "specula/design/design.h"
+#include "specula/expr/expr.h"
+
+namespace specula::design {
+
+/// A lobe shape: postfix nodes over the one variable c; its plain constants are free.
+struct Shape {
+  std::vector<expr::Node> nodes;
+  std::string key;       ///< to_infix with every free constant printed as "k"
+  int cost = 0;          ///< the cost model's units (operation_cost)
+  int constants = 0;     ///< free constants
+  /// The last step that built it.
+  enum class Step { leaf, affine, square, clamp, sqrt, exp, log2, product, sum, quotient } step = Step::leaf;
+  bool nonnegative = false;  ///< ≥ 0 for any constants (max, squares, square roots, exp, products of such)
+
+  expr::Expression expression() const;
+};
+
+/// The most free constants a shape may have.
+inline constexpr int kMaxShapeConstants = 4;
+
+/// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma),
+/// cheapest first, then in a fixed order; at most `limit` shapes. Deterministic.
+std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit);
+
+/// The expression `shape` with its free constants set to `values` (in node order).
+expr::Expression with_constants(const Shape& shape, std::span<const double> values);
+
+}  // namespace specula::design

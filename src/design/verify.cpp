@@ -1,0 +1,93 @@
+#include "verify.h"
+
+#include <cmath>
+
+#include "fitting.h"
+#include "specula/analysis/error.h"
+#include "specula/catalogue/catalogue.h"
+#include "specula/interrupt/interrupt.h"
+
+namespace specula::design {
+
+namespace {
+
+constexpr int kRefineSteps = 40;
+
+struct AtParam {
+  double param;
+  analysis::ApproximationError error;
+};
+
+AtParam error_at(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s, double p) {
+  return {p, analysis::approximation_error(lobe_at(p), target_at(s, p), s.zone)};
+}
+
+// Golden-section search for the largest `value` on [a, b] in t = log p (or p), from the best
+// of the grid.
+template <class Value>
+AtParam refine(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s, double a, double b,
+               AtParam best, Value value, const std::function<bool()>& stop) {
+  const bool log = s.lo > 0 && s.hi / s.lo >= 4;
+  const auto to_p = [&](double t) { return log ? std::exp(t) : t; };
+  double lo = log ? std::log(a) : a, hi = log ? std::log(b) : b;
+  constexpr double kGolden = 0.6180339887498949;
+  AtParam x1 = error_at(lobe_at, s, to_p(hi - kGolden * (hi - lo)));
+  AtParam x2 = error_at(lobe_at, s, to_p(lo + kGolden * (hi - lo)));
+  for (int step = 0; step < kRefineSteps && !stop(); ++step) {
+    if (value(x1) > value(best)) best = x1;
+    if (value(x2) > value(best)) best = x2;
+    if (value(x1) >= value(x2)) {
+      hi = log ? std::log(x2.param) : x2.param;
+      x2 = x1;
+      x1 = error_at(lobe_at, s, to_p(hi - kGolden * (hi - lo)));
+    } else {
+      lo = log ? std::log(x1.param) : x1.param;
+      x1 = x2;
+      x2 = error_at(lobe_at, s, to_p(lo + kGolden * (hi - lo)));
+    }
+  }
+  if (value(x1) > value(best)) best = x1;
+  if (value(x2) > value(best)) best = x2;
+  return best;
+}
+
+}  // namespace
+
+std::function<lobes::Lobe(double)> lobe_of(const std::string& id, const Settings& s) {
+  const auto info = model_definition(id, {{s.param, s.lo}});
+  return [info, &s](double p) {
+    ParamValues own;  // the formula's parameters: the range parameter, unless F does not read it
+    if (info->find_param(s.param)) own[s.param] = p;
+    return make_model(info, own).lobe();
+  };
+}
+
+DomainError domain_error(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s,
+                         const std::function<bool()>& stop) {
+  const std::vector<double> grid = param_grid(s.lo, s.hi, kVerifyGrid);
+  std::vector<AtParam> at;
+  for (double p : grid) {
+    if (stop()) break;
+    at.push_back(error_at(lobe_at, s, p));
+  }
+  DomainError out;
+  if (at.empty()) return out;
+  const auto abs_of = [](const AtParam& x) { return x.error.max_abs; };
+  const auto rel_of = [](const AtParam& x) { return x.error.max_rel_epicenter; };
+  const auto worst = [&](auto value) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < at.size(); ++i)
+      if (value(at[i]) > value(at[best])) best = i;
+    const double a = grid[best == 0 ? 0 : best - 1], b = grid[std::min(best + 1, at.size() - 1)];
+    return a < b ? refine(lobe_at, s, a, b, at[best], value, stop) : at[best];
+  };
+  const AtParam abs = worst(abs_of), rel = worst(rel_of);
+  out.max_abs = abs.error.max_abs;
+  out.argmax_c = std::cos(abs.error.argmax_abs_deg * std::numbers::pi / 180);
+  out.argmax_param = abs.param;
+  out.max_rel = rel.error.max_rel_epicenter;
+  out.argmax_rel_param = rel.param;
+  return out;
+}
+
+}  // namespace specula::design

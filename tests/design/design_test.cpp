@@ -1,0 +1,134 @@
+// The designer end to end on a small search: what it refuses, that its front beats the paper's
+// lobe, that the errors it claims hold on an independent dense evaluation, that it does not
+// depend on the thread count, and that its model file loads.
+#include <cmath>
+#include <gtest/gtest.h>
+
+#include "specula/catalogue/catalogue.h"
+#include "specula/catalogue/model_file.h"
+#include "specula/design/design.h"
+#include "specula/design/output.h"
+
+namespace specula::design {
+namespace {
+
+Settings small() {
+  Settings s;
+  s.target = "phong";
+  s.lo = 1;
+  s.hi = 100;
+  s.operations = parse_operations("fma,mul,max");
+  s.max_cost = 3;
+  s.threads = 1;
+  s.measure_cost = false;
+  return s;
+}
+
+const Result& small_result() {
+  static const Result r = design(small());
+  return r;
+}
+
+// max |F − cⁿ| over a dense grid of c and n, with F evaluated through the model file's lobe.
+double dense_error(const std::string& formula, double lo, double hi) {
+  const auto info = model_definition("lobe: " + formula, {{"n", lo}});
+  double worst = 0;
+  for (int j = 0; j <= 120; ++j) {
+    const double n = lo * std::pow(hi / lo, j / 120.0);
+    ParamValues params;
+    if (info->find_param("n")) params["n"] = n;
+    const Model m = make_model(info, params);
+    for (int i = 0; i <= 4000; ++i) {
+      const double c = std::pow(i / 4000.0, 1.0 / 3);  // denser near 1, where cⁿ lives
+      worst = std::max(worst, std::abs(lobes::eval(m.lobe(), c) - std::pow(c, n)));
+    }
+  }
+  return worst;
+}
+
+TEST(Design, RefusesBadSettings) {
+  const auto refused = [](auto change, const char* field) {
+    Settings s = small();
+    change(s);
+    try {
+      validate(s);
+      ADD_FAILURE() << "accepted; expected a refusal of " << field;
+    } catch (const InvalidField& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+    }
+  };
+  refused([](Settings& s) { s.target = "ggx"; }, "target");
+  refused([](Settings& s) { s.lo = 0; }, "range");                 // n > 0
+  refused([](Settings& s) { s.hi = 2e9; }, "range");               // n ≤ 1e9
+  refused([](Settings& s) { s.lo = 50, s.hi = 50; }, "range");     // empty
+  refused([](Settings& s) { s.param = "m"; }, "range");            // phong has no m
+  refused([](Settings& s) { s.max_cost = 0; }, "max_cost");
+  refused([](Settings& s) { s.max_cost = 25; }, "max_cost");
+  refused([](Settings& s) { s.max_forms = 0; }, "max_forms");
+  refused([](Settings& s) { s.time_s = 0; }, "time");
+  refused([](Settings& s) { s.shard = 2, s.shards = 2; }, "shard");
+  refused([](Settings& s) { s.operations.clear(); }, "ops");
+  refused([](Settings& s) { s.zone = 1; }, "zone");
+  refused([](Settings& s) { s.params["n"] = 3; }, "params");
+  EXPECT_NO_THROW(validate(small()));  // the control: the base settings pass
+}
+
+TEST(Design, TheFrontBeatsTheLogLobe) {
+  const Result& r = small_result();
+  ASSERT_FALSE(r.front.empty());
+  const auto log = std::ranges::find_if(r.references, [](const Lobe& l) { return l.id == "log"; });
+  ASSERT_NE(log, r.references.end());
+  EXPECT_NEAR(log->max_abs, 0.125, 1e-3);  // the paper's 0.125, measured by the same machinery
+  EXPECT_TRUE(std::ranges::any_of(r.front, [&](const Lobe& m) { return m.max_abs < log->max_abs; }));
+}
+
+TEST(Design, ClaimedErrorsHoldOnADenseGrid) {
+  for (const Lobe& m : small_result().front) {
+    const double dense = dense_error(m.formula, 1, 100);
+    EXPECT_LE(dense, m.max_abs * (1 + 1e-9) + 1e-12) << m.id << ": " << m.formula;
+    EXPECT_GT(dense, m.max_abs * 0.9) << m.id << " (the claim is near the truth, not far above it)";
+  }
+}
+
+TEST(Design, AnUnderstatedClaimIsCaught) {  // the negative control of the check above
+  const Lobe& m = small_result().front.back();
+  EXPECT_GT(dense_error(m.formula, 1, 100), m.max_abs * 0.8);
+}
+
+TEST(Design, TheThreadCountDoesNotChangeTheFront) {
+  Settings s = small();
+  s.threads = 2;
+  const Result two = design(s);
+  ASSERT_EQ(two.front.size(), small_result().front.size());
+  for (std::size_t i = 0; i < two.front.size(); ++i) EXPECT_EQ(two.front[i].formula, small_result().front[i].formula);
+}
+
+TEST(Design, TheModelFileLoadsWithEveryMemberBareAndNormalized) {
+  const Result& r = small_result();
+  const auto infos = parse_model_file(models_toml(r), "models.toml");
+  ASSERT_EQ(infos.size(), 2 * r.front.size());
+  for (std::size_t i = 0; i < r.front.size(); ++i) {
+    EXPECT_EQ(infos[2 * i].id, r.front[i].id);
+    EXPECT_EQ(infos[2 * i].normalization, Normalization::none);
+    EXPECT_EQ(infos[2 * i + 1].id, r.front[i].id + "-normalized");
+    EXPECT_EQ(infos[2 * i + 1].normalization, Normalization::quadrature);
+  }
+}
+
+TEST(Design, TheCsvHasTheColumnsAndARowPerLobe) {
+  const Result& r = small_result();
+  const std::string csv = front_csv(r);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
+            "spirv_instructions,model_cost,shape,timing");
+  EXPECT_EQ(static_cast<std::size_t>(std::ranges::count(csv, '\n')), 1 + r.front.size() + r.references.size());
+}
+
+TEST(Design, AFormBudgetStopsTheScreening) {
+  Settings s = small();
+  s.max_forms = 5;
+  EXPECT_EQ(design(s).forms_screened, 5);
+}
+
+}  // namespace
+}  // namespace specula::design
