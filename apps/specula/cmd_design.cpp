@@ -7,6 +7,7 @@
 #include "specula/design/design.h"
 #include "specula/design/output.h"
 #include "specula/interrupt/interrupt.h"
+#include "specula/io/files.h"
 
 namespace specula::cli {
 namespace {
@@ -72,6 +73,7 @@ void run(const DesignOptions& o) {
   const design::Settings s = settings_of(o);
   design::validate(s);
   if (o.out.empty()) throw InvalidArgument("--out DIR is required: the directory the front is written to");
+  io::StagedDirectory staged(o.out);  // an unwritable --out fails here, before the search
   design::Result result;
   if (!o.quiet && isatty(STDERR_FILENO)) {
     ProgressPrinter printer;
@@ -81,7 +83,8 @@ void run(const DesignOptions& o) {
   }
   const int signal = stop_requested();
   clear_stop_request();  // what was found is written, then the stop goes on
-  design::write_outputs(result, o.out);
+  design::write_files(result, staged.path());
+  staged.commit();
   std::cout << design::front_table(result)
             << fmt::format("{} of {} shapes screened in {:.1f} s{}; {}\n", result.forms_screened, result.forms_total, result.seconds,
                            result.cancelled ? " (stopped)" : "", result.cost_note);
@@ -104,17 +107,21 @@ void add_design_command(CLI::App& app) {
   cmd->add_option("--objective", o->objective, "max-abs: the largest |F − target|; max-rel: the largest relative error "
                   "where the target ≥ --zone; both: the two as objectives")
       ->capture_default_str()->check(one_of<design::Objective, design::kObjectiveCount>());
-  cmd->add_option("--zone", o->settings.zone, "The epicenter of max-rel: where the target ≥ zone, in (0, 1)")->capture_default_str();
+  cmd->add_option("--zone", o->settings.zone, "The epicenter of max-rel: where the target ≥ zone, in (0, 1)")->capture_default_str()
+      ->check(CLI::Range(1e-9, 1 - 1e-9));
   cmd->add_option("--ops", o->ops, "Operations the lobes may use: all, or a list of fma, mul, add, max, div, sqrt, exp, log2")
       ->capture_default_str();
   cmd->add_option("--max-cost", o->settings.max_cost, "Shapes up to this cost model (fma = mul = add = max = 1, div = sqrt = 4, "
-                  "exp = log2 = 10), in [1, 24]; 7 and up take long")->capture_default_str();
+                  "exp = log2 = 10), in [1, 24]; 7 and up take long")->capture_default_str()
+      ->check(CLI::Range(1, design::Ranges::max_cost));
   cmd->add_option("--max-forms", o->max_forms, "Screen at most this many shapes, in [1, 10^6] (a budget that gives the "
-                  "same front on any machine)");
+                  "same front on any machine)")
+      ->check(CLI::Range(std::int64_t{1}, design::Ranges::forms));
   cmd->add_option("--time", o->settings.time_s, "Seconds for the screening (it stops there; the finishing takes a minute more), in (0, 86400]")
-      ->capture_default_str();
+      ->capture_default_str()->check(CLI::Range(1e-3, design::Ranges::time_s));
   cmd->add_option("--seed", o->settings.seed, "Seed of the constants' random starts")->capture_default_str();
-  cmd->add_option("--threads", o->settings.threads, "Threads, 0 = all cores, in [0, 1024]")->capture_default_str();
+  cmd->add_option("--threads", o->settings.threads, "Threads, 0 = all cores, in [0, 1024]")->capture_default_str()
+      ->check(CLI::Range(0, design::Ranges::threads));
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
   cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml (swapped in whole)");

@@ -105,11 +105,9 @@ std::string front_table(const Result& result) {
   return out;
 }
 
-void write_outputs(const Result& result, const std::filesystem::path& dir) {
-  io::StagedDirectory staged(dir);
-  io::write_file_atomically(staged.path() / "front.csv", front_csv(result));
-  io::write_file_atomically(staged.path() / "models.toml", models_toml(result));
-  staged.commit();
+void write_files(const Result& result, const std::filesystem::path& dir) {
+  io::write_file_atomically(dir / "front.csv", front_csv(result));
+  io::write_file_atomically(dir / "models.toml", models_toml(result));
 }
 
 }  // namespace specula::design

@@ -190,3 +190,35 @@ TEST_F(Cli, SigintStopsTheWorkOfAUserModelItself) {
 }
 
 }  // namespace
+
+// ---- design: bad settings are refused before any work, and nothing is written ------------------
+
+TEST_F(Cli, DesignRefusesBadSettingsInOneLineWritingNothing) {
+  const fs::path out = work() / "front";
+  const std::vector<std::string> base{"design", "--out", out.string(), "-q", "--no-timing"};
+  const auto with = [&](std::vector<std::string> extra) {
+    auto args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  EXPECT_THAT(bad(with({"--target", "ggx"})).err, HasSubstr("not a lobe"));
+  EXPECT_THAT(bad(with({"--target", "nosuch"})).err, HasSubstr("nosuch"));
+  EXPECT_THAT(bad(with({"--range", "n=0:10"})).err, HasSubstr("outside"));
+  EXPECT_THAT(bad(with({"--range", "n=10:1"})).err, HasSubstr("empty"));
+  EXPECT_THAT(bad(with({"--range", "n10"})).err, HasSubstr("NAME=LO:HI"));
+  EXPECT_THAT(bad(with({"--range", "s=1:10"})).err, HasSubstr("no parameter 's'"));
+  EXPECT_THAT(bad(with({"--shard", "3/2"})).err, HasSubstr("shard"));
+  EXPECT_THAT(bad(with({"--shard", "1-2"})).err, HasSubstr("I/N"));
+  EXPECT_THAT(bad(with({"--max-cost", "99"})).err, HasSubstr("--max-cost"));
+  EXPECT_THAT(bad(with({"--max-forms", "0"})).err, HasSubstr("--max-forms"));
+  EXPECT_THAT(bad(with({"--time", "-1"})).err, HasSubstr("time"));
+  EXPECT_THAT(bad(with({"--ops", "fma,tan"})).err, HasSubstr("unknown operation 'tan'"));
+  EXPECT_THAT(bad(with({"--objective", "median"})).err, HasSubstr("--objective"));
+  EXPECT_THAT(bad({"design", "--out", "/proc/version/x", "-q", "--max-cost", "1", "--no-timing"}).err,
+              HasSubstr("cannot"));
+  EXPECT_FALSE(fs::exists(out));
+  // The control: the same command inside the ranges writes the front.
+  EXPECT_EQ(run(with({"--range", "n=1:10", "--ops", "fma,max", "--max-cost", "2"})).code, 0);
+  EXPECT_TRUE(fs::exists(out / "front.csv"));
+  EXPECT_TRUE(fs::exists(out / "models.toml"));
+}

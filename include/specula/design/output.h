@@ -19,7 +19,7 @@ std::string models_toml(const Result& result);
 /// The front as a plain-text table, members then references.
 std::string front_table(const Result& result);
 
-/// Writes front.csv and models.toml into `dir`, built beside it and swapped in whole.
-void write_outputs(const Result& result, const std::filesystem::path& dir);
+/// Writes front.csv and models.toml into the directory `dir` (a staged one: io::StagedDirectory).
+void write_files(const Result& result, const std::filesystem::path& dir);
 
 }  // namespace specula::design
