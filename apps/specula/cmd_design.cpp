@@ -1,6 +1,8 @@
 // specula design: the lobe designer (docs/designer.md).
 #include <fmt/format.h>
+#include <functional>
 #include <iostream>
+#include <optional>
 #include <unistd.h>
 
 #include "cli.h"
@@ -18,6 +20,7 @@ struct DesignOptions {
   std::string form, range = "n=1:1000", objective = "max-abs", ops = "all", shard = "0/1", out;
   design::Settings settings;
   std::optional<std::int64_t> max_forms;
+  std::vector<std::string> merge;
   bool quiet = false;
 };
 
@@ -69,18 +72,29 @@ class ProgressPrinter {
   ~ProgressPrinter() { std::cerr << "\r\033[K" << std::flush; }
 };
 
+design::Result merged(const DesignOptions& o, const std::function<void(const design::Progress&)>& progress) {
+  std::vector<design::Result> shards;
+  for (const auto& dir : o.merge) shards.push_back(design::read_design(dir));
+  design::Result r = design::merge(shards, progress);
+  return r;
+}
+
 void run(const DesignOptions& o) {
-  const design::Settings s = settings_of(o);
-  design::validate(s);
+  design::Settings s;
+  if (o.merge.empty()) {
+    s = settings_of(o);
+    design::validate(s);
+  }
   if (o.out.empty()) throw InvalidArgument("--out DIR is required: the directory the front is written to");
   io::StagedDirectory staged(o.out);  // an unwritable --out fails here, before the search
-  design::Result result;
+  std::function<void(const design::Progress&)> progress;
+  std::optional<ProgressPrinter> printer;
   if (!o.quiet && isatty(STDERR_FILENO)) {
-    ProgressPrinter printer;
-    result = design::design(s, std::ref(printer));
-  } else {
-    result = design::design(s);
+    printer.emplace();
+    progress = std::ref(*printer);
   }
+  design::Result result = o.merge.empty() ? design::design(s, progress) : merged(o, progress);
+  printer.reset();
   const int signal = stop_requested();
   clear_stop_request();  // what was found is written, then the stop goes on
   design::write_files(result, staged.path());
@@ -125,6 +139,8 @@ void add_design_command(CLI::App& app) {
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
   cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml (swapped in whole)");
+  cmd->add_option("--merge", o->merge, "Instead of a search: merge the fronts of these --out directories (shards of "
+                  "one search), timing every lobe again here")->expected(1, 10'000);
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on stderr");
   cmd->footer(
       "Fits each shape's constants per value of the range parameter for the largest error, gives\n"
@@ -133,7 +149,11 @@ void add_design_command(CLI::App& app) {
       "reference lobes as native code in one run, and writes the Pareto front. Examples:\n"
       "  specula design --target phong --range n=1:1000 --out designed\n"
       "  specula --models designed/models.toml error --model phong-d1 --reference phong --n 1:1000@20:log\n"
-      "  specula design --target phong --range n=1:1000 --ops fma,mul,max --max-cost 8 --out cheap");
+      "  specula design --target phong --range n=1:1000 --ops fma,mul,max --max-cost 8 --out cheap\n"
+      "Shards of one search on several machines, then one front (GNU parallel; a Slurm array runs\n"
+      "the same command with I = $SLURM_ARRAY_TASK_ID):\n"
+      "  parallel specula design --shard {}/4 --out shard{} ::: 0 1 2 3\n"
+      "  specula design --merge shard0 shard1 shard2 shard3 --out designed");
   cmd->callback([o] { run(*o); });
 }
 

@@ -240,6 +240,43 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   return note;
 }
 
+// The members placed against the references, measured in the same run: the references' errors,
+// every lobe timed, the Pareto front with its ids.
+template <class Tell>
+void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stopper, const Tell& tell) {
+  const Settings& s = result.settings;
+  const auto stop = [&] { return stopper.cancelled(); };
+  members = pareto(std::move(members), s.objective, false);
+  result.references = reference_lobes(s);
+  if (!result.cancelled) {
+    try {
+      for (auto& r : result.references) set_errors(r, domain_error(lobe_function(r, s), s, stop));
+    } catch (const Interrupted&) {
+      result.cancelled = true;
+    }
+  }
+  if (result.cancelled || stop()) {
+    result.cancelled = true;
+    result.references.clear();  // not measured: nothing to place the front against
+  }
+  if (s.measure_cost && !result.cancelled) {
+    std::vector<Lobe*> all_lobes;
+    for (auto& m : members) all_lobes.push_back(&m);
+    for (auto& r : result.references) all_lobes.push_back(&r);
+    tell("timing", 0, static_cast<std::int64_t>(all_lobes.size()), nullptr);
+    result.cost_note = time_lobes(all_lobes, s, stopper);
+  } else {
+    result.cost_note = "not timed: cost is the cost model's";
+  }
+  const bool timed = std::ranges::all_of(members, [](const Lobe& m) { return std::isfinite(m.ns_per_eval); });
+  members = pareto(std::move(members), s.objective, timed);
+  const std::string prefix = s.target.find(':') == std::string::npos ? s.target : std::string("lobe");
+  for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
+  result.front = std::move(members);
+  result.seconds = stopper.seconds();
+  tell("done", 1, 1, &result.front);
+}
+
 }  // namespace
 
 int operation_cost(Operation op) {
@@ -360,37 +397,41 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   std::vector<Lobe> members;
   for (auto& l : finished)
     if (l && std::isfinite(objective_error(*l, s.objective))) members.push_back(std::move(*l));
-  members = pareto(std::move(members), s.objective, false);
+  finish_front(std::move(members), result, stopper, tell);
+  return result;
+}
 
-  // 3. The references on the same axes, and everything timed in one run.
-  result.references = reference_lobes(s);
-  if (!result.cancelled) {
-    try {
-      for (auto& r : result.references) set_errors(r, domain_error(lobe_function(r, s), s, stop));
-    } catch (const Interrupted&) {
-      result.cancelled = true;
-    }
+Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress) {
+  if (shards.empty()) throw InvalidField("merge", "nothing to merge");
+  const Settings& first = shards.front().settings;
+  const auto same_problem = [&](const Settings& s) {
+    return s.target == first.target && s.params == first.params && s.form == first.form && s.param == first.param &&
+           s.lo == first.lo && s.hi == first.hi && s.objective == first.objective && s.zone == first.zone;
+  };
+  for (const auto& r : shards)
+    if (!same_problem(r.settings))
+      throw InvalidField("merge", fmt::format("the fronts were designed for different targets: {} over {} in [{:g}, {:g}] "
+                                              "and {} over {} in [{:g}, {:g}]",
+                                              first.target, first.param, first.lo, first.hi, r.settings.target,
+                                              r.settings.param, r.settings.lo, r.settings.hi));
+  Result result;
+  result.settings = first;
+  result.settings.shard = 0;
+  result.settings.shards = 1;
+  const Stopper stopper(result.settings);
+  std::vector<Lobe> members;
+  for (const auto& r : shards) {
+    result.forms_screened += r.forms_screened;
+    result.forms_total += r.forms_total;
+    result.cancelled |= r.cancelled;
+    for (const Lobe& m : r.front)
+      if (std::ranges::none_of(members, [&](const Lobe& x) { return x.formula == m.formula; })) members.push_back(m);
   }
-  if (result.cancelled || stop()) {
-    result.cancelled = true;
-    result.references.clear();  // not measured: nothing to place the front against
-  }
-  if (s.measure_cost && !result.cancelled) {
-    std::vector<Lobe*> all_lobes;
-    for (auto& m : members) all_lobes.push_back(&m);
-    for (auto& r : result.references) all_lobes.push_back(&r);
-    tell("timing", 0, static_cast<std::int64_t>(all_lobes.size()), nullptr);
-    result.cost_note = time_lobes(all_lobes, s, stopper);
-  } else {
-    result.cost_note = "not timed: cost is the cost model's";
-  }
-  const bool timed = std::ranges::all_of(members, [](const Lobe& m) { return std::isfinite(m.ns_per_eval); });
-  members = pareto(std::move(members), s.objective, timed);
-  const std::string prefix = s.target.find(':') == std::string::npos ? s.target : std::string("lobe");
-  for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
-  result.front = std::move(members);
-  result.seconds = stopper.seconds();
-  tell("done", 1, 1, &result.front);
+  for (auto& m : members) m.ns_per_eval = NAN;  // timed again, beside the rest, on this machine
+  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
+    if (progress) progress({phase, done, total, front});
+  };
+  finish_front(std::move(members), result, stopper, tell);
   return result;
 }
 

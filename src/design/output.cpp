@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/fit/fit.h"
@@ -105,7 +106,69 @@ std::string front_table(const Result& result) {
   return out;
 }
 
+std::string design_json(const Result& result) {
+  const Settings& s = result.settings;
+  nlohmann::json ops = nlohmann::json::array();
+  for (Operation op : s.operations) ops.push_back(to_string(op));
+  nlohmann::json j{{"target", s.target}, {"params", s.params}, {"form", s.form ? to_string(*s.form) : ""},
+                   {"param", s.param}, {"lo", s.lo}, {"hi", s.hi}, {"objective", to_string(s.objective)},
+                   {"zone", s.zone}, {"ops", ops}, {"max_cost", s.max_cost}, {"seed", s.seed},
+                   {"shard", s.shard}, {"shards", s.shards}, {"forms_screened", result.forms_screened},
+                   {"forms_total", result.forms_total}, {"stopped", result.cancelled},
+                   {"members", nlohmann::json::array()}};
+  for (const Lobe& l : result.front)
+    j["members"].push_back({{"id", l.id}, {"formula", l.formula}, {"shape", l.shape}, {"max_abs", l.max_abs},
+                            {"argmax_c", l.argmax_c}, {"argmax_param", l.argmax_param}, {"max_rel", l.max_rel},
+                            {"model_cost", l.model_cost}});
+  return j.dump(2) + "\n";
+}
+
+Result read_design(const std::filesystem::path& dir) {
+  const auto path = dir / "design.json";
+  try {
+    const nlohmann::json j = nlohmann::json::parse(io::read_file(path));
+    Result r;
+    Settings& s = r.settings;
+    s.target = j.at("target").get<std::string>();
+    for (const auto& [name, value] : j.at("params").items()) s.params[name] = value.get<double>();
+    const std::string form = j.at("form").get<std::string>();
+    if (!form.empty()) s.form = form_named(form);
+    s.param = j.at("param").get<std::string>();
+    s.lo = j.at("lo").get<double>();
+    s.hi = j.at("hi").get<double>();
+    const auto objective = objective_named(j.at("objective").get<std::string>());
+    if (!objective) throw InvalidArgument("unknown objective");
+    s.objective = *objective;
+    s.zone = j.at("zone").get<double>();
+    s.max_cost = j.at("max_cost").get<int>();
+    s.seed = j.at("seed").get<std::uint64_t>();
+    s.shard = j.at("shard").get<int>();
+    s.shards = j.at("shards").get<int>();
+    r.forms_screened = j.at("forms_screened").get<std::int64_t>();
+    r.forms_total = j.at("forms_total").get<std::int64_t>();
+    r.cancelled = j.at("stopped").get<bool>();
+    validate(s);
+    for (const auto& m : j.at("members")) {
+      Lobe l;
+      l.id = m.at("id").get<std::string>();
+      l.formula = m.at("formula").get<std::string>();
+      l.shape = m.at("shape").get<std::string>();
+      l.max_abs = m.at("max_abs").get<double>();
+      l.argmax_c = m.at("argmax_c").get<double>();
+      l.argmax_param = m.at("argmax_param").get<double>();
+      l.max_rel = m.at("max_rel").get<double>();
+      l.model_cost = m.at("model_cost").get<int>();
+      (void)expr::parse(l.formula, {"c", s.param});  // a formula in c and the parameter
+      r.front.push_back(std::move(l));
+    }
+    return r;
+  } catch (const std::exception& e) {
+    throw InvalidField("merge", fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
 void write_files(const Result& result, const std::filesystem::path& dir) {
+  io::write_file_atomically(dir / "design.json", design_json(result));
   io::write_file_atomically(dir / "front.csv", front_csv(result));
   io::write_file_atomically(dir / "models.toml", models_toml(result));
 }

@@ -2,7 +2,9 @@
 // lobe, that the errors it claims hold on an independent dense evaluation, that it does not
 // depend on the thread count, and that its model file loads.
 #include <cmath>
+#include <filesystem>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/catalogue/model_file.h"
@@ -122,6 +124,35 @@ TEST(Design, TheCsvHasTheColumnsAndARowPerLobe) {
             "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
             "spirv_instructions,model_cost,shape,timing");
   EXPECT_EQ(static_cast<std::size_t>(std::ranges::count(csv, '\n')), 1 + r.front.size() + r.references.size());
+}
+
+TEST(Design, TwoShardsMergeIntoOneFront) {
+  const auto dir = std::filesystem::temp_directory_path() / ("specula-design-test-" + std::to_string(getpid()));
+  std::vector<Result> read;
+  for (int shard = 0; shard < 2; ++shard) {
+    Settings s = small();
+    s.shard = shard;
+    s.shards = 2;
+    const Result part = design(s);
+    EXPECT_LT(part.forms_total, small_result().forms_total);
+    const auto out = dir / std::to_string(shard);
+    std::filesystem::create_directories(out);
+    write_files(part, out);
+    read.push_back(read_design(out));
+    EXPECT_EQ(read.back().front.size(), part.front.size());
+  }
+  std::filesystem::remove_all(dir);
+  const Result merged = merge(read);
+  EXPECT_EQ(merged.forms_total, small_result().forms_total);  // the shards cover every shape once
+  ASSERT_FALSE(merged.front.empty());
+  // The merged front holds the unsharded front's best lobe, or one as good and no costlier.
+  const Lobe& best = small_result().front.back();
+  EXPECT_TRUE(std::ranges::any_of(merged.front, [&](const Lobe& x) {
+    return x.model_cost <= best.model_cost && x.max_abs <= best.max_abs * (1 + 1e-9);
+  })) << best.formula;
+  // The control: fronts of different targets do not merge.
+  read[1].settings.hi = 50;
+  EXPECT_THROW(merge(read), InvalidField);
 }
 
 TEST(Design, AFormBudgetStopsTheScreening) {

@@ -58,6 +58,9 @@ constexpr const char* to_string(Objective objective) noexcept {
   return "";
 }
 static_assert(names_complete<Objective, kObjectiveCount>([](Objective o) { return to_string(o); }));
+constexpr std::optional<Objective> objective_named(std::string_view name) {
+  return enum_named<Objective, kObjectiveCount>(name, [](Objective o) { return to_string(o); });
+}
 
 /// The documented ranges of the options: anything outside is InvalidField named by its key.
 struct Ranges {
@@ -124,6 +127,11 @@ struct Progress {
 /// Runs the designer. Throws InvalidArgument / InvalidField on bad settings (target not a lobe,
 /// range outside the parameter's, empty or reversed, budgets out of range).
 Result design(const Settings& settings, const std::function<void(const Progress&)>& progress = {});
+
+/// One front from the fronts of shards of one search (the same target, parameters, range,
+/// objective and zone; InvalidField "merge" otherwise): their members' union, the references
+/// measured again, everything timed again in one run on this machine, the Pareto front taken anew.
+Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress = {});
 
 /// Throws what design() throws for `settings`, doing no work.
 void validate(const Settings& settings);

@@ -19,7 +19,13 @@ std::string models_toml(const Result& result);
 /// The front as a plain-text table, members then references.
 std::string front_table(const Result& result);
 
-/// Writes front.csv and models.toml into the directory `dir` (a staged one: io::StagedDirectory).
+/// design.json: the settings and every member (formula, shape, errors, cost), what --merge reads.
+std::string design_json(const Result& result);
+/// The result a design.json holds (settings and members; no references). Throws InvalidField
+/// "merge" naming the file on anything it cannot read.
+Result read_design(const std::filesystem::path& dir);
+
+/// Writes front.csv, models.toml and design.json into the directory `dir` (a staged one: io::StagedDirectory).
 void write_files(const Result& result, const std::filesystem::path& dir);
 
 }  // namespace specula::design
