@@ -10,6 +10,7 @@
 #include "specula/design/output.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/files.h"
+#include "specula/report/design_page.h"
 
 namespace specula::cli {
 namespace {
@@ -98,6 +99,7 @@ void run(const DesignOptions& o) {
   const int signal = stop_requested();
   clear_stop_request();  // what was found is written, then the stop goes on
   design::write_files(result, staged.path());
+  report::write_design_pictures(result, staged.path());
   staged.commit();
   std::cout << design::front_table(result)
             << fmt::format("{} of {} shapes screened in {:.1f} s{}; {}\n", result.forms_screened, result.forms_total, result.seconds,
@@ -138,7 +140,8 @@ void add_design_command(CLI::App& app) {
       ->check(CLI::Range(0, design::Ranges::threads));
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
-  cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml (swapped in whole)");
+  cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml, design.json, front.svg, index.html "
+                  "(swapped in whole)");
   cmd->add_option("--merge", o->merge, "Instead of a search: merge the fronts of these --out directories (shards of "
                   "one search), timing every lobe again here")->expected(1, 10'000);
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on stderr");

@@ -21,6 +21,8 @@
 #include "specula/catalogue/catalogue.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/simd/lobes.h"
+#include "checks.h"
+#include "spirv.h"
 #include "verify.h"
 
 namespace specula::design {
@@ -138,13 +140,6 @@ std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> f
   return l;
 }
 
-// The parameter value lobes are timed at: the benchmark's n = 20 where the range holds it, else
-// the range's middle.
-double timing_param(const Settings& s) {
-  if (s.lo <= 20 && 20 <= s.hi) return 20;
-  return s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
-}
-
 // The built-in bare lobes with the range parameter (one per family), and the spherical Gaussian
 // e^(n(c − 1)) where the parameter is n.
 std::vector<Lobe> reference_lobes(const Settings& s) {
@@ -240,6 +235,30 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   return note;
 }
 
+// SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
+std::string count_spirv(Result& result, const std::function<bool()>& stop) {
+  const Settings& s = result.settings;
+  const auto work = std::filesystem::temp_directory_path() / fmt::format("specula-design-spirv-{}", getpid());
+  std::filesystem::create_directories(work);
+  std::string why;
+  const auto count = [&](Lobe& l) {
+    if (!why.empty()) return;
+    ParamValues params;
+    params[s.param] = timing_param(s);
+    const bool formula = is_formula(l);
+    const auto info = model_definition(formula ? "lobe: " + l.formula : l.id, params);
+    if (!info->find_param(s.param)) params.clear();
+    if (const auto n = lobe_spirv_instructions(make_model(info, params), work, stop, why)) l.spirv_instructions = *n;
+  };
+  for (auto& l : result.front) count(l);
+  for (auto& l : result.references) count(l);
+  std::error_code ignored;
+  std::filesystem::remove_all(work, ignored);
+  if (stop()) throw Interrupted(Interrupted::Reason::signal, stop_requested());
+  return why.empty() ? "SPIR-V: instructions of the lobe beyond F = c's, glslangValidator -V (no optimizer)"
+                     : "SPIR-V not counted: " + why;
+}
+
 // The members placed against the references, measured in the same run: the references' errors,
 // every lobe timed, the Pareto front with its ids.
 template <class Tell>
@@ -273,11 +292,25 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
   const std::string prefix = s.target.find(':') == std::string::npos ? s.target : std::string("lobe");
   for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
   result.front = std::move(members);
+  if (!result.cancelled) {
+    tell("checking", 0, static_cast<std::int64_t>(result.front.size()), nullptr);
+    try {
+      for (auto& m : result.front) normalize_and_check(m, s, stop);
+      result.spirv_note = count_spirv(result, stop);
+    } catch (const Interrupted&) {
+      result.cancelled = true;
+    }
+  }
   result.seconds = stopper.seconds();
   tell("done", 1, 1, &result.front);
 }
 
 }  // namespace
+
+double timing_param(const Settings& s) {
+  if (s.lo <= 20 && 20 <= s.hi) return 20;
+  return s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
+}
 
 int operation_cost(Operation op) {
   switch (op) {

@@ -5,20 +5,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <dlfcn.h>
-#include <fcntl.h>
 #include <fmt/format.h>
 #include <fstream>
-#include <signal.h>
-#include <spawn.h>
-#include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
-#include <thread>
 #include <unistd.h>
 
+#include "process.h"
 #include "specula/exceptions.h"
-
-extern char** environ;
 
 namespace specula::design {
 
@@ -27,7 +20,7 @@ using expr::Op;
 
 namespace {
 
-constexpr auto kCompileLimit = std::chrono::minutes(5);
+constexpr std::chrono::seconds kCompileLimit{300};
 
 // A value of the formula while it is written out: a uniform (a scalar C++ expression in the
 // parameter p, computed once per call) or a vector expression in x (the cosine's lanes).
@@ -205,40 +198,6 @@ class Writer {
   std::vector<std::string> uniforms_;
 };
 
-// Runs argv with stderr to `log`; its exit status, or throws past the limit or on `stop`.
-int run_process(const std::vector<std::string>& argv, const std::filesystem::path& log, const std::function<bool()>& stop) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw std::runtime_error(fmt::format("cannot run {}: {}", argv[0], std::strerror(spawned)));
-  const auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-    if (stop() || std::chrono::steady_clock::now() - start > kCompileLimit) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      throw std::runtime_error(stop() ? "stopped while compiling" : "the compiler took over 5 minutes");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-}
-
-std::string first_error(const std::filesystem::path& log) {
-  std::ifstream in(log);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.find("error") != std::string::npos) return line;
-  return "no message";
-}
-
 }  // namespace
 
 NativeSource native_source(const std::vector<NativeLobe>& lobes) {
@@ -273,7 +232,7 @@ NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::fi
   std::ofstream(cpp) << source.text;
   const int status = run_process({compiler, "-std=gnu++20", "-O2", "-march=native", "-fPIC", "-shared", "-o",
                                   so.string(), cpp.string()},
-                                 log, stop);
+                                 log, stop, kCompileLimit);
   if (status != 0) throw std::runtime_error(fmt::format("compiling the kernels failed: {}", first_error(log)));
   library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!library_) throw std::runtime_error(fmt::format("loading the kernels failed: {}", dlerror()));

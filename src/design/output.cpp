@@ -38,11 +38,12 @@ double log_ns(const Result& r) {
 }
 
 std::string row(const Lobe& l, double log) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
                      csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
                      number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
                      l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
-                     l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing));
+                     l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing),
+                     number(l.k), csv_field(l.check));
 }
 
 Form target_form(const Settings& s) {
@@ -64,7 +65,7 @@ std::string shown(const Lobe& l) {
 std::string front_csv(const Result& result) {
   std::string out =
       "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
-      "spirv_instructions,model_cost,shape,timing\n";
+      "spirv_instructions,model_cost,shape,timing,k,check\n";
   const double log = log_ns(result);
   for (const auto& l : result.front) out += row(l, log);
   for (const auto& l : result.references) out += row(l, log);
@@ -91,18 +92,22 @@ std::string models_toml(const Result& result) {
 }
 
 std::string front_table(const Result& result) {
-  std::string out = fmt::format("{:<22} {:>10} {:>10} {:>9} {:>8} {:>4}  {}\n", "id", "max_abs", "max_rel", "ns/eval",
-                                "vs log", "ops", "formula");
+  std::string out = fmt::format("{:<22} {:>10} {:>10} {:>9} {:>8} {:>4} {:>6} {:>6}  {}\n", "id", "max_abs", "max_rel",
+                                "ns/eval", "vs log", "ops", "spirv", "check", "formula");
   const double log = log_ns(result);
   const auto line = [&](const Lobe& l) {
-    out += fmt::format("{:<22} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>4}  {}\n", l.id, l.max_abs, l.max_rel,
+    out += fmt::format("{:<22} {:>10.4g} {:>10.4g} {:>9} {:>8} {:>4} {:>6} {:>6}  {}\n", l.id, l.max_abs, l.max_rel,
                        std::isfinite(l.ns_per_eval) ? fmt::format("{:.3f}", l.ns_per_eval) : "-",
                        std::isfinite(l.ns_per_eval / log) ? fmt::format("{:.2f}", l.ns_per_eval / log) : "-",
-                       l.ops > 0 ? std::to_string(l.ops) : "-", shown(l));
+                       l.ops > 0 ? std::to_string(l.ops) : "-",
+                       std::isfinite(l.spirv_instructions) ? fmt::format("{:g}", l.spirv_instructions) : "-",
+                       l.reference || l.check.empty() ? "-" : l.check == "pass" ? "pass" : "FAIL", shown(l));
   };
   for (const auto& l : result.front) line(l);
   out += "references:\n";
   for (const auto& l : result.references) line(l);
+  for (const auto& l : result.front)
+    if (!l.check.empty() && l.check != "pass") out += fmt::format("{}: check {}\n", l.id, l.check);
   return out;
 }
 

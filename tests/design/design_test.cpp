@@ -10,6 +10,7 @@
 #include "specula/catalogue/model_file.h"
 #include "specula/design/design.h"
 #include "specula/design/output.h"
+#include "design/checks.h"
 
 namespace specula::design {
 namespace {
@@ -122,7 +123,7 @@ TEST(Design, TheCsvHasTheColumnsAndARowPerLobe) {
   const std::string csv = front_csv(r);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
-            "spirv_instructions,model_cost,shape,timing");
+            "spirv_instructions,model_cost,shape,timing,k,check");
   EXPECT_EQ(static_cast<std::size_t>(std::ranges::count(csv, '\n')), 1 + r.front.size() + r.references.size());
 }
 
@@ -153,6 +154,20 @@ TEST(Design, TwoShardsMergeIntoOneFront) {
   // The control: fronts of different targets do not merge.
   read[1].settings.hi = 50;
   EXPECT_THROW(merge(read), InvalidField);
+}
+
+TEST(Design, EveryMemberIsNormalizedAndChecked) {
+  for (const Lobe& m : small_result().front) {
+    EXPECT_EQ(m.check, "pass") << m.id << ": " << m.formula;
+    EXPECT_TRUE(std::isfinite(m.k) && m.k > 0) << m.id;
+  }
+}
+
+TEST(Design, ACheckFailsForALobeThatGoesNegative) {  // the negative control of the test above
+  Lobe l;
+  l.formula = "c - 0.5";
+  normalize_and_check(l, small(), [] { return false; });
+  EXPECT_NE(l.check.find("non-negativity"), std::string::npos) << l.check;
 }
 
 TEST(Design, AFormBudgetStopsTheScreening) {

@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include "design/native.h"
+#include "design/spirv.h"
+
+#include <cstring>
 
 namespace specula::design {
 namespace {
@@ -55,6 +58,40 @@ TEST_F(NativeTest, AFailedCompileSaysSo) {
 
 TEST_F(NativeTest, AStopEndsTheCompile) {
   EXPECT_THROW(NativeKernels({lobe("c")}, dir_, [] { return true; }), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace specula::design
+
+namespace specula::design {
+namespace {
+
+// A SPIR-V module as words: the header, then instructions (word count << 16 | opcode).
+std::string spirv(std::vector<std::uint32_t> words) {
+  std::string out(words.size() * 4, '\0');
+  std::memcpy(out.data(), words.data(), out.size());
+  return out;
+}
+
+TEST(Spirv, CountsTheInstructionsOfFunctionBodies) {
+  const std::uint32_t header[] = {0x07230203, 0x00010000, 0, 10, 0};
+  std::vector<std::uint32_t> words(std::begin(header), std::end(header));
+  const auto add = [&](std::uint32_t opcode, std::uint32_t length) {
+    words.push_back(length << 16 | opcode);
+    for (std::uint32_t i = 1; i < length; ++i) words.push_back(0);
+  };
+  add(17, 2);   // OpCapability: outside any function
+  add(54, 5);   // OpFunction
+  add(248, 2);  // OpLabel
+  add(129, 5);  // OpFAdd
+  add(253, 1);  // OpReturn
+  add(56, 1);   // OpFunctionEnd
+  EXPECT_EQ(spirv_function_instructions(spirv(words)), 5);
+  words[0] = 0x12345678;  // the control: not SPIR-V
+  EXPECT_FALSE(spirv_function_instructions(spirv(words)));
+  words[0] = 0x07230203;
+  words.back() = 9u << 16 | 56;  // an instruction running past the end
+  EXPECT_FALSE(spirv_function_instructions(spirv(words)));
 }
 
 }  // namespace

@@ -104,7 +104,9 @@ struct Lobe {
   int model_cost = 0;           ///< the cost model's units
   double ns_per_eval = NAN;     ///< measured, float, one core, in cache; NaN if not measured
   std::string timing;           ///< how ns_per_eval was measured ("native", "bench fast tier", …)
-  double spirv_instructions = NAN;  ///< of the GLSL export compiled by glslang; NaN if unavailable
+  double spirv_instructions = NAN;  ///< the lobe's SPIR-V instructions beyond F = c's (glslang); NaN if unavailable
+  double k = NAN;               ///< members: k by quadrature at timing_param
+  std::string check;            ///< members: "pass", or what `specula check` finds failing, and where
 };
 
 struct Result {
@@ -116,6 +118,7 @@ struct Result {
   double seconds = 0;
   bool cancelled = false;
   std::string cost_note;         ///< how the costs were obtained (compiler, or why the model)
+  std::string spirv_note;        ///< how the SPIR-V counts were obtained, or why not
 };
 
 struct Progress {
@@ -132,6 +135,13 @@ Result design(const Settings& settings, const std::function<void(const Progress&
 /// objective and zone; InvalidField "merge" otherwise): their members' union, the references
 /// measured again, everything timed again in one run on this machine, the Pareto front taken anew.
 Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress = {});
+
+/// The parameter value lobes are timed and normalized at: 20 (the benchmark's n) where the range
+/// holds it, else the range's middle (geometric for a log-spaced range).
+double timing_param(const Settings& s);
+
+/// The parameter values every member is checked at: the range's ends and timing_param.
+std::vector<double> check_params(const Settings& s);
 
 /// Throws what design() throws for `settings`, doing no work.
 void validate(const Settings& settings);

@@ -1,0 +1,168 @@
+#include "specula/report/design_page.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "context.h"
+#include "specula/catalogue/catalogue.h"
+#include "specula/glsl/glsl.h"
+#include "specula/io/files.h"
+
+namespace specula::report {
+
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font: 16px/1.5 system-ui, sans-serif; max-width: 70rem; margin: 2rem auto; padding: 0 1rem; color: #1b1b1b; }
+h1 { font-size: 1.8rem; margin-bottom: 0; } h2 { margin-top: 2.5rem; border-bottom: 1px solid #ccc; }
+.lede { color: #555; margin-top: .25rem; }
+table { border-collapse: collapse; font-variant-numeric: tabular-nums; margin: 1rem 0; }
+th, td { padding: .2rem .7rem; text-align: right; border-bottom: 1px solid #eee; vertical-align: top; }
+th { background: #f4f4f4; } table.models td:first-child, table.models td:last-child { text-align: left; }
+code, pre { font: 13px/1.4 ui-monospace, monospace; background: #f6f6f6; }
+pre { padding: .6rem; overflow-x: auto; }
+figure { margin: 1.5rem 0; } figure svg { max-width: 100%; height: auto; }
+)";
+
+bool timed(const design::Result& r) {
+  return !r.front.empty() && std::ranges::all_of(r.front, [](const design::Lobe& l) { return std::isfinite(l.ns_per_eval); });
+}
+
+double cost_of(const design::Lobe& l, bool measured) { return measured ? l.ns_per_eval : l.model_cost; }
+
+// F at c for a member or reference lobe at parameter value p.
+std::function<double(double)> lobe_at(const design::Result& r, const design::Lobe& l, double p) {
+  const design::Settings& s = r.settings;
+  ParamValues params;
+  params[s.param] = p;
+  const bool formula = !l.reference || l.id == "spherical-gaussian";
+  const auto info = model_definition(formula ? "lobe: " + l.formula : l.id, params);
+  if (!info->find_param(s.param)) params.clear();
+  const Model m = make_model(info, params);
+  return [m](double c) { return lobes::eval(m.lobe(), c); };
+}
+
+std::function<double(double)> target_at(const design::Settings& s, double p) {
+  ParamValues params = s.params;
+  params[s.param] = p;
+  const Model m = make_model(s.target, params, s.form);
+  return [m](double c) { return lobes::eval(m.lobe(), c); };
+}
+
+std::vector<double> curve_params(const design::Settings& s) {
+  const double mid = s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
+  return {s.lo, mid, s.hi};
+}
+
+std::string member_glsl(const design::Result& r, const design::Lobe& l) {
+  const design::Settings& s = r.settings;
+  const auto info = model_definition("lobe: " + l.formula, {{s.param, s.lo}});
+  ParamValues params;
+  if (info->find_param(s.param)) params[s.param] = design::timing_param(s);
+  return glsl::model_glsl(make_model(info, params));
+}
+
+}  // namespace
+
+Chart design_front_chart(const design::Result& r) {
+  const bool measured = timed(r);
+  Chart chart;
+  chart.title = fmt::format("Designed lobes against {} over {} ∈ [{:g}, {:g}]", r.settings.target, r.settings.param,
+                            r.settings.lo, r.settings.hi);
+  chart.x = {measured ? "cost (ns per value, float, one core)" : "cost (the cost model's units)", Scale::log, {}, {}};
+  chart.y = {fmt::format("largest |F − {}| over the domain", r.settings.target), Scale::log, {}, {}};
+  Series front{"designed front", model_colour("design"), {}, {}, Stroke::solid, true, {}};
+  for (const auto& l : r.front) {
+    const double x = cost_of(l, measured);
+    if (!front.x.empty()) {  // the staircase: across at the previous error, then down
+      front.x.push_back(x);
+      front.y.push_back(front.y.back());
+    }
+    front.x.push_back(x);
+    front.y.push_back(l.max_abs);
+  }
+  chart.series.push_back(front);
+  if (measured)
+    for (const auto& l : r.references)
+      if (l.max_abs > 0)
+        chart.series.push_back({l.id, model_colour(l.id), {l.ns_per_eval}, {l.max_abs}, Stroke::none, true, {l.id}});
+  chart.legend = Legend::top_right;
+  return chart;
+}
+
+Chart design_error_chart(const design::Result& r, const design::Lobe& member) {
+  const design::Settings& s = r.settings;
+  Chart chart;
+  chart.title = fmt::format("{}: |F − {}| against c", member.id, s.target);
+  chart.x = {"c", Scale::linear, 0.0, 1.0};
+  chart.y = {"|F − target|", Scale::linear, 0.0, {}};
+  const char* colours[] = {"#0072B2", "#D55E00", "#009E73"};
+  std::size_t k = 0;
+  for (double p : curve_params(s)) {
+    const auto f = lobe_at(r, member, p);
+    const auto t = target_at(s, p);
+    Series series{fmt::format("{} = {:g}", s.param, p), colours[k++ % 3], {}, {}, Stroke::solid, false, {}};
+    for (int i = 0; i <= 400; ++i) {
+      const double c = std::pow(i / 400.0, 0.25);  // denser near 1, where narrow lobes live
+      series.x.push_back(c);
+      series.y.push_back(std::abs(f(c) - t(c)));
+    }
+    chart.series.push_back(std::move(series));
+  }
+  chart.legend = Legend::top_left;
+  chart.width = 520;
+  chart.height = 320;
+  return chart;
+}
+
+std::string design_page(const design::Result& r) {
+  const design::Settings& s = r.settings;
+  std::vector<std::vector<std::string>> rows;
+  const auto row = [&](const design::Lobe& l) {
+    rows.push_back({xml_escape(l.id), l.reference ? "reference" : "member", show(l.max_abs), show(l.max_rel),
+                    std::isfinite(l.ns_per_eval) ? show(l.ns_per_eval, 3) : "–", l.ops > 0 ? std::to_string(l.ops) : "–",
+                    std::isfinite(l.spirv_instructions) ? show(l.spirv_instructions, 3) : "–",
+                    l.reference ? "–" : xml_escape(l.check), "<code>" + xml_escape(l.formula) + "</code>"});
+  };
+  for (const auto& l : r.front) row(l);
+  for (const auto& l : r.references) row(l);
+  std::string members;
+  for (const auto& l : r.front) {
+    members += fmt::format(
+        "<h2 id=\"{0}\">{0}</h2>\n<p><code>F = {1}</code></p>\n<p>Largest |F − {2}| = {3} at c = {4}, {5} = {6}; "
+        "largest relative error where {2} ≥ {7}: {8}. Normalized: k({5} = {9}) = {10} by quadrature (the model "
+        "<code>{0}-normalized</code>); <code>specula check</code> at {5} = {11}: {12}.</p>\n<figure>{13}</figure>\n"
+        "<details><summary>GLSL</summary><pre>{14}</pre></details>\n",
+        xml_escape(l.id), xml_escape(l.formula), xml_escape(s.target), show(l.max_abs, 6), show(l.argmax_c, 6),
+        xml_escape(s.param), show(l.argmax_param, 6), s.zone, show(l.max_rel, 6), show(design::timing_param(s), 4),
+        show(l.k, 6), xml_escape(fmt::format("{:g}", fmt::join(design::check_params(s), ", "))),
+        xml_escape(l.check), to_svg(design_error_chart(r, l)), xml_escape(member_glsl(r, l)));
+  }
+  return fmt::format(R"(<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>specula design: {0}</title>
+<meta name="viewport" content="width=device-width, initial-scale=1"><style>{1}</style></head>
+<body>
+<h1>Designed lobes against {0}</h1>
+<p class="lede">{2} over {3} ∈ [{4:g}, {5:g}], objective {6}: {7} of {8} shapes screened in {9:.1f} s{10}. {11}; {15}.</p>
+<figure>{12}</figure>
+{13}
+{14}
+<footer><p class="lede">Written by <code>specula design</code>; the files beside this page: front.csv, models.toml,
+design.json, front.svg. Load the lobes in any command with <code>--models models.toml</code>.</p></footer>
+</body></html>
+)",
+                     xml_escape(s.target), kStyle, xml_escape(s.target), xml_escape(s.param), s.lo, s.hi,
+                     to_string(s.objective), r.forms_screened, r.forms_total, r.seconds,
+                     r.cancelled ? " (stopped early)" : "", xml_escape(r.cost_note), to_svg(design_front_chart(r)),
+                     html_table({"id", "kind", "max |F − target|", "max rel.", "ns/value", "ops", "SPIR-V", "check",
+                                 "formula"},
+                                rows, "models"),
+                     members, xml_escape(r.spirv_note));
+}
+
+void write_design_pictures(const design::Result& r, const std::filesystem::path& dir) {
+  io::write_file_atomically(dir / "front.svg", to_svg(design_front_chart(r)));
+  io::write_file_atomically(dir / "index.html", design_page(r));
+}
+
+}  // namespace specula::report
