@@ -7,6 +7,7 @@
 #include "specula/catalogue/catalogue.h"
 #include "specula/glsl/glsl.h"
 #include "specula/io/files.h"
+#include "specula/render/image_io.h"
 
 namespace specula::report {
 
@@ -148,7 +149,7 @@ std::string design_page(const design::Result& r) {
 {13}
 {14}
 <footer><p class="lede">Written by <code>specula design</code>; the files beside this page: front.csv, models.toml,
-design.json, front.svg. Load the lobes in any command with <code>--models models.toml</code>.</p></footer>
+design.json, front.svg, front.png. Load the lobes in any command with <code>--models models.toml</code>.</p></footer>
 </body></html>
 )",
                      xml_escape(s.target), kStyle, xml_escape(s.target), xml_escape(s.param), s.lo, s.hi,
@@ -162,6 +163,7 @@ design.json, front.svg. Load the lobes in any command with <code>--models models
 
 void write_design_pictures(const design::Result& r, const std::filesystem::path& dir) {
   io::write_file_atomically(dir / "front.svg", to_svg(design_front_chart(r)));
+  render::write_png(dir / "front.png", to_image(design_front_chart(r)), {{"Software", "specula design"}});
   io::write_file_atomically(dir / "index.html", design_page(r));
 }
 

@@ -1,6 +1,7 @@
 #include "specula/report/plot.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <utility>
 
 #include "specula/exceptions.h"
+#include "specula/render/canvas.h"
 
 namespace specula::report {
 namespace {
@@ -79,6 +81,13 @@ class AxisMap {
     if (scale_ == Scale::linear) return true;
     const double e = std::log10(tick);
     return std::abs(e - std::round(e)) < 1e-9;
+  }
+  /// A tick label as plain text (log decades beyond 10^±3 as 1e-6).
+  std::string plain_label(double tick) const {
+    if (scale_ == Scale::linear) return tick_text(tick, step_);
+    const int e = static_cast<int>(std::lround(std::log10(tick)));
+    if (e >= -3 && e <= 4) return tick_text(tick, std::pow(10, std::min(e, 0)));
+    return fmt::format("1e{}", e);
   }
   /// SVG text content of a tick label (log decades beyond 10^±3 as 10 with a superscript).
   std::string label(double tick) const {
@@ -311,6 +320,77 @@ std::string to_svg(const Chart& chart) {
   for (const auto& s : chart.series) out += series_svg(chart, s, xs, ys);
   out += "</g>\n" + legend_svg(chart, x0, x1, y0, y1);
   return out + "</svg>\n";
+}
+
+render::Srgb8Image to_image(const Chart& chart) {
+  using render::Canvas;
+  validate(chart);
+  const double x0 = kLeft, x1 = chart.width - kRight, y0 = chart.height - kBottom, y1 = kTop;
+  const auto [xlo, xhi] = data_range(chart, true);
+  const auto [ylo, yhi] = data_range(chart, false);
+  const AxisMap xs(chart.x, xlo, xhi, x0, x1), ys(chart.y, ylo, yhi, y0, y1);
+  Canvas canvas(chart.width, chart.height);
+  const render::Srgb8 ink = render::parse_hex_colour("#222222"), grid = render::parse_hex_colour(kGrid),
+                      minor = render::parse_hex_colour("#f2f2f2");
+  for (const double t : xs.ticks()) {
+    canvas.line(xs(t), y0, xs(t), y1, xs.major(t) ? grid : minor);
+    canvas.line(xs(t), y0, xs(t), y0 + (xs.major(t) ? 5 : 3), ink);
+    if (xs.major(t)) canvas.text(xs.plain_label(t), xs(t), y0 + 18, 11, Canvas::Anchor::middle, ink);
+  }
+  for (const double t : ys.ticks()) {
+    canvas.line(x0, ys(t), x1, ys(t), ys.major(t) ? grid : minor);
+    canvas.line(x0 - (ys.major(t) ? 5 : 3), ys(t), x0, ys(t), ink);
+    if (ys.major(t)) canvas.text(ys.plain_label(t), x0 - 8, ys(t) + 4, 11, Canvas::Anchor::end, ink);
+  }
+  for (const auto& [ax, ay, bx, by] : {std::array{x0, y0, x1, y0}, {x1, y0, x1, y1}, {x1, y1, x0, y1}, {x0, y1, x0, y0}})
+    canvas.line(ax, ay, bx, by, ink);
+  canvas.text(chart.x.label, (x0 + x1) / 2, chart.height - 12, 13, Canvas::Anchor::middle, ink);
+  canvas.text(chart.y.label, 20, (y0 + y1) / 2, 13, Canvas::Anchor::middle, ink, true);
+  canvas.text(chart.title, (x0 + x1) / 2, 22, 14, Canvas::Anchor::middle, ink);
+  const auto inside = [&](double x, double y) { return x >= x0 - 0.5 && x <= x1 + 0.5 && y >= y1 - 0.5 && y <= y0 + 0.5; };
+  for (const auto& s : chart.series) {
+    const render::Srgb8 colour = render::parse_hex_colour(s.colour);
+    bool joined = false;  // the previous point is drawn and the line continues from (last_x, last_y)
+    double last_x = 0, last_y = 0;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!usable(s.x[i], chart.x.scale) || !usable(s.y[i], chart.y.scale)) {
+        joined = false;
+        continue;
+      }
+      const double x = xs(s.x[i]), y = ys(s.y[i]);
+      if (joined && s.stroke != Stroke::none && inside(x, y) && inside(last_x, last_y))
+        canvas.line(last_x, last_y, x, y, colour, 1.8);
+      if (s.markers && inside(x, y)) canvas.dot(x, y, 3.2, colour);
+      if (!s.point_labels.empty() && inside(x, y))
+        canvas.text(s.point_labels[i], x + 5, y - 5, 10, Canvas::Anchor::start, ink);
+      joined = true;
+      last_x = x;
+      last_y = y;
+    }
+  }
+  std::vector<const Series*> entries;
+  for (const auto& s : chart.series)
+    if (!s.name.empty()) entries.push_back(&s);
+  if (!entries.empty() && chart.legend != Legend::none) {
+    int longest = 0;
+    for (const auto* s : entries) longest = std::max(longest, canvas.text_width(s->name, 11));
+    const double w = 44 + longest, h = 8 + 16 * static_cast<double>(entries.size());
+    const bool right = chart.legend == Legend::top_right || chart.legend == Legend::bottom_right;
+    const bool top = chart.legend == Legend::top_right || chart.legend == Legend::top_left;
+    const double lx = right ? x1 - w - 8 : x0 + 8, ly = top ? y1 + 8 : y0 - h - 8;
+    for (double y = ly; y <= ly + h; y += 1) canvas.line(lx, y, lx + w, y, {255, 255, 255});
+    for (const auto& [ax, ay, bx, by] : {std::array{lx, ly, lx + w, ly}, {lx + w, ly, lx + w, ly + h}, {lx + w, ly + h, lx, ly + h}, {lx, ly + h, lx, ly}})
+      canvas.line(ax, ay, bx, by, render::parse_hex_colour("#bbbbbb"));
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Series& s = *entries[i];
+      const double y = ly + 12 + 16 * static_cast<double>(i);
+      const render::Srgb8 colour = render::parse_hex_colour(s.colour);
+      if (s.stroke != Stroke::none) canvas.line(lx + 6, y, lx + 30, y, colour, 1.8);
+      if (s.markers || s.stroke == Stroke::none) canvas.dot(lx + 18, y, 3.2, colour);
+      canvas.text(s.name, lx + 35, y + 4, 11, Canvas::Anchor::start, ink);
+    }
+  }
+  return canvas.image();
 }
 
 std::string to_svg(const PolarChart& chart) {

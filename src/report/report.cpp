@@ -72,6 +72,7 @@ void write_report(const Options& requested) {
   sections.push_back(energy_section(context));
   sections.push_back(fitted_norms_section(context));
   sections.push_back(cost_section(context));
+  sections.push_back(designed_section(context));
   sections.push_back(differences_section(context));
   sections.insert(sections.begin(), claims_section(context));
   context.progress("index.html");

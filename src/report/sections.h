@@ -23,6 +23,7 @@ Section energy_section(Context& context);        ///< albedo ρ(θ_i), conservat
 Section fitted_norms_section(Context& context);  ///< exact vs fitted k; fits where no closed form
 Section cost_section(Context& context);          ///< evaluation cost against accuracy
 Section differences_section(Context& context);   ///< log lobes against Blinn-Phong, as images
+Section designed_section(Context& context);      ///< the lobe designer on the paper's problem
 
 /// The default comparison sphere (render::default_scene) shaded with `model`, size × size pixels.
 render::Image sphere(const Model& model, int size);

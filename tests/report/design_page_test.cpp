@@ -56,3 +56,36 @@ TEST(DesignPage, AnUntimedFrontIsPlacedOnTheCostModel) {  // the control: no ns,
 
 }  // namespace
 }  // namespace specula::report
+
+namespace specula::report {
+namespace {
+
+int pixels_of(const render::Srgb8Image& image, render::Srgb8 colour) {
+  int count = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) count += image.at(x, y) == colour;
+  return count;
+}
+
+TEST(ChartImage, DrawsTheSeriesInItsColourWithTheAxesText) {
+  Chart chart{"a line", {"x", Scale::linear, {}, {}}, {"y", Scale::log, {}, {}}, {}, Legend::none, 320, 200};
+  chart.series.push_back({"", "#0072B2", {0, 1, 2}, {1, 10, 100}, Stroke::solid, true, {}});
+  const render::Srgb8Image image = to_image(chart);
+  EXPECT_EQ(image.width(), 320);
+  EXPECT_EQ(image.height(), 200);
+  EXPECT_GT(pixels_of(image, {0x00, 0x72, 0xB2}), 100);  // the line and its markers, fully covered
+  EXPECT_GT(pixels_of(image, {0x22, 0x22, 0x22}), 20);   // the frame and the labels' ink
+  chart.series[0].colour = "#D55E00";                    // the control: another colour, no blue
+  EXPECT_EQ(pixels_of(to_image(chart), {0x00, 0x72, 0xB2}), 0);
+}
+
+TEST(ChartImage, RefusesWhatItCannotDraw) {
+  Chart chart{"bad", {"x", Scale::linear, {}, {}}, {"y", Scale::linear, {}, {}}, {}, Legend::none, 320, 200};
+  chart.series.push_back({"", "blue", {0, 1}, {0, 1}, Stroke::solid, false, {}});
+  EXPECT_THROW(to_image(chart), InvalidArgument);  // not #rrggbb
+  chart.series[0] = {"", "#000000", {NAN}, {NAN}, Stroke::solid, false, {}};
+  EXPECT_THROW(to_image(chart), InvalidArgument);  // nothing to draw
+}
+
+}  // namespace
+}  // namespace specula::report

@@ -20,7 +20,7 @@ Chart design_error_chart(const design::Result& result, const design::Lobe& membe
 /// index.html for the designer's output directory.
 std::string design_page(const design::Result& result);
 
-/// front.svg and index.html into `dir` (a staged directory, beside front.csv and models.toml).
+/// front.svg, front.png and index.html into `dir` (a staged directory, beside front.csv and models.toml).
 void write_design_pictures(const design::Result& result, const std::filesystem::path& dir);
 
 }  // namespace specula::report

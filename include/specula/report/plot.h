@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "specula/render/image.h"
+
 namespace specula::report {
 
 enum class Scale { linear, log };
@@ -45,6 +47,10 @@ struct Chart {
 /// a chart with no finite point.
 std::string to_svg(const Chart& chart);
 
+/// The chart as pixels, laid out as to_svg lays it out (solid strokes; text in DejaVu Sans):
+/// what a PNG of the chart shows. Throws what to_svg throws, and InvalidArgument for a series
+/// colour that is not #rrggbb.
+render::Srgb8Image to_image(const Chart& chart);
 /// A lobe's value over the angle from the normal in the plane of incidence, drawn in polar form
 /// (0° up along the normal, ±90° the horizon): the view BRDF Explorer shows.
 struct PolarSeries {
