@@ -33,5 +33,5 @@ set(specula_gl_packages "OpenGL COMPONENTS OpenGL EGL")
 set(specula_report_needs core fit cost design render)
 set(specula_report_packages "")
 
-set(specula_serve_needs core fit queries render)
+set(specula_serve_needs core fit cost design queries render)
 set(specula_serve_packages pkg-config:cpp-httplib)

@@ -1,6 +1,6 @@
 // Fuzzes the server's request handling without HTTP (serve::Api::handle,
 // include/specula/serve/api.h): the JSON body → Fields (src/serve/fields.cpp) → query path of
-// every analysis endpoint (src/serve/endpoints.cpp) and of the fit jobs (src/serve/fit_jobs.cpp).
+// every analysis endpoint (src/serve/endpoints.cpp) and of the fit jobs (src/serve/fit_job.cpp).
 // Input: a request body, POSTed to each analysis route in turn. Tight Limits keep one input
 // within milliseconds (a few values, pairs, angles; fits of a few rows for a few generations).
 // Properties, each a finding when broken:

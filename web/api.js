@@ -13,3 +13,22 @@ export const del = async (path) => (await fetch(path, {method: 'DELETE'})).json(
 
 /// The rows of a table answer as arrays per column: column(table, 'value').
 export const column = (table, name) => table.rows.map((row) => row[name]);
+
+/// Polls the job at `path` every `ms` until it leaves "running": show(status) on each answer, then
+/// ended() (ended(error) when a poll fails). Returns a function that stops the polling.
+export function pollJob(path, ms, show, ended) {
+  const timer = setInterval(async () => {
+    try {
+      const status = await api(path);
+      show(status);
+      if (status.state !== 'running') {
+        clearInterval(timer);
+        ended();
+      }
+    } catch (e) {
+      clearInterval(timer);
+      ended(e);
+    }
+  }, ms);
+  return () => clearInterval(timer);
+}

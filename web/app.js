@@ -1,11 +1,12 @@
 // specula lab: model cards with parameter sliders, the spheres (WebGL2, the server's shaders),
-// a difference view, plots, the model editor and the fit panel. Every number comes from the
+// a difference view, plots, the model editor, the fit panel and the designer panel. Every number comes from the
 // server's API. A card holds a catalogue id or a definition of the editor's (sent as it is).
 import {api, column} from './api.js';
 import {readState, writeState} from './state.js';
 import {SphereView, drawDifference} from './spheres.js';
 import {linePlot, polarPlot, palette} from './plots.js';
 import {setupFit} from './fit.js';
+import {setupDesign} from './design.js';
 import {setupEditor} from './editor.js';
 
 const $ = (id) => document.getElementById(id);
@@ -21,6 +22,12 @@ const ref = (m) => m.definition ?? m.id;  // the model as a request names it
 const isLobe = (m) => infoOf(m)?.kind === 'lobe';
 const hasN = (m) => infoOf(m).params.some((p) => p.name === 'n');
 const wide = (p) => p.max / Math.max(p.min, 1e-3) > 1000;  // log slider for n-like parameters
+// The error plot's n: 1 to 1000, within the model's own range of n (a designed lobe's is its design range).
+const errorRange = (m) => {
+  const n = infoOf(m).params.find((p) => p.name === 'n');
+  const lo = Math.max(1, n.min), hi = Math.min(1000, n.max);
+  return lo < hi ? `${lo}:${hi}@25:log` : `${lo}`;
+};
 
 // Slider position in [0, 1000] ↔ parameter value.
 function toSlider(p, v) {
@@ -132,7 +139,7 @@ async function drawPlots(ticket) {
     return {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
   }));
   const error = isLobe({id: state.reference}) ? await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
-    const t = await api('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: '1:1000@25:log'});
+    const t = await api('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: errorRange(m)});
     return {...m, xs: column(t, 'n'), ys: column(t, 'max_abs')};
   })) : [];
   const coefficients = await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
@@ -204,6 +211,7 @@ async function main() {
     rebuild();
   });
   setupFit(catalogue.filter((m) => m.kind === 'lobe'));
+  setupDesign(catalogue.filter((m) => m.kind === 'lobe'), applyDefinition);
   edit = setupEditor(applyDefinition);
   rebuild();
 }

@@ -1,12 +1,12 @@
 // The fit panel: POST /api/fit for a lobe model's normalization k(n), poll GET /api/fit/{id}
 // while the Pareto front grows, DELETE to cancel; each formula copies as C++ or GLSL.
-import {api, del} from './api.js';
+import {api, del, pollJob} from './api.js';
 
 export function setupFit(lobeModels) {
   const $ = (id) => document.getElementById(id);
   const select = $('fit-model'), status = $('fit-status'), body = document.querySelector('#fit-front tbody');
   select.replaceChildren(...lobeModels.map((m) => new Option(m.id, m.id, m.id === 'log', m.id === 'log')));
-  let job = null, timer = null;
+  let job = null, stopPolling = () => {};
 
   const copyButton = (label, text) => {
     const button = document.createElement('button');
@@ -34,17 +34,11 @@ export function setupFit(lobeModels) {
     }));
   };
 
-  const finish = () => { clearInterval(timer); timer = null; $('fit-start').disabled = false; $('fit-cancel').disabled = true; };
-
-  const poll = async () => {
-    try {
-      const s = await api(`/api/fit/${job}`);
-      show(s);
-      if (s.state !== 'running') finish();
-    } catch (e) {
-      status.textContent = e.message;
-      finish();
-    }
+  const finish = (error) => {
+    stopPolling();
+    $('fit-start').disabled = false;
+    $('fit-cancel').disabled = true;
+    if (error) status.textContent = error.message;
   };
 
   $('fit-form').addEventListener('submit', async (event) => {
@@ -58,7 +52,7 @@ export function setupFit(lobeModels) {
       $('fit-cancel').disabled = false;
       body.replaceChildren();
       status.textContent = `job ${job} started`;
-      timer = setInterval(poll, 400);
+      stopPolling = pollJob(`/api/fit/${job}`, 400, show, finish);
     } catch (e) {
       status.textContent = e.message;
       status.className = 'error';

@@ -130,8 +130,8 @@ void add_design_command(CLI::App& app) {
   cmd->add_option("--max-cost", o->settings.max_cost, "Shapes up to this cost model (fma = mul = add = max = 1, div = sqrt = 4, "
                   "exp = log2 = 10), in [1, 24]; 7 and up take long")->capture_default_str()
       ->check(CLI::Range(1, design::Ranges::max_cost));
-  cmd->add_option("--max-forms", o->max_forms, "Screen at most this many shapes, in [1, 10^6] (a budget that gives the "
-                  "same front on any machine)")
+  cmd->add_option("--max-forms", o->max_forms, "Screen the first this many shapes in order of cost (all shards together; "
+                  "default and most 10^6), a budget that gives the same front on any machine")
       ->check(CLI::Range(std::int64_t{1}, design::Ranges::forms));
   cmd->add_option("--time", o->settings.time_s, "Seconds for the screening (it stops there; the finishing takes a minute more), in (0, 86400]")
       ->capture_default_str()->check(CLI::Range(1e-3, design::Ranges::time_s));

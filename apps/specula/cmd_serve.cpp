@@ -57,11 +57,11 @@ void serve(const ServeOptions& o) {
   {
     serve::Server server;
     run(server, o);
-  }  // the server's destructor joins its fit jobs, waiting Limits::stop_seconds at most
-  if (const std::size_t left = serve::abandoned_fit_threads()) {
+  }  // the server's destructor joins its jobs, waiting Limits::stop_seconds at most
+  if (const std::size_t left = serve::abandoned_job_threads()) {
     // A search that ignores its cancel flag and work limit still runs: it must not hold the
     // exit, and static destructors must not run under it.
-    std::cerr << fmt::format("specula serve: {} fit job(s) did not stop; exiting without them\n", left);
+    std::cerr << fmt::format("specula serve: {} job(s) did not stop; exiting without them\n", left);
     std::cout.flush();
     std::_Exit(0);
   }

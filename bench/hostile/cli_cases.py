@@ -227,8 +227,8 @@ ALIASES = {"-m": "--model", "-p": "--param", "-o": "--out", "-c": "--cos", "-t":
 UNKNOWN = ["--bogus", "-Z", "--model-", "---", "extra", "--=", "-" + "x" * 100, "--help=x", "-", "--"]
 COUNTS = {"eval": 40, "normalize": 30, "albedo": 25, "check": 25, "error": 25, "fit": 30, "render": 30,
           "compare": 15, "glsl": 20, "export": 20, "models": 10, "bench": 4,
-          "lut": 12, "sample": 10, "check --sampling": 12, "render --env": 10}
-CAPS = {"bench": 60, "serve": 5}
+          "lut": 12, "sample": 10, "check --sampling": 12, "render --env": 10, "design": 25}
+CAPS = {"bench": 60, "serve": 5, "design": 120}
 
 
 def random_string(rng):
@@ -339,6 +339,11 @@ def group_specific(cli):
         (["error", "--model", "log", "--n", "1:1e7"], 3, (2,)),
         (["normalize", "--model", "log", "--n", "1:1e7"], 3, (2,)),
         (["check", "--model", "phong", "--pairs", "100000000"], 3, (2,)),
+        (["design", "--max-cost", "24", "--max-forms", "10", "--no-timing", "--out", "d", "-q"], 60, (0,)),
+        (["design", "--max-cost", "24", "--time", "2", "--no-timing", "--out", "d", "-q"], 120, (0,)),
+        (["design", "--range", "n=1:1e13", "--out", "d"], 3, (2,)),
+        (["design", "--target", "lambert", "--out", "d"], 3, (2,)),
+        (["design", "--shard", "3/2", "--out", "d"], 3, (2,)),
         (["eval", "-m", "log", "--cos", "1", "--coef", "1\n2"], 5, (2,)),
         (["eval", "-m", "lo\ng", "--cos", "1"], 5, (2,)),
         (["eval", "-m", "log", "--cos", "1\r\x1b[2J"], 5, (2,)),

@@ -18,7 +18,8 @@ import proc
 import serve_models
 from tally import shown
 
-POST_ENDPOINTS = ["/api/eval", "/api/normalize", "/api/albedo", "/api/check", "/api/error", "/api/glsl", "/api/fit"]
+POST_ENDPOINTS = ["/api/eval", "/api/normalize", "/api/albedo", "/api/check", "/api/error", "/api/glsl", "/api/fit",
+                  "/api/design"]
 SLOW_S = 2.0  # a GET /api/models slower than this is a fault
 HEAVY = {"model": "ggx", "step": 0.01, "pairs": 1}
 ENDLESS_FIT = {"model": "log", "ops": "+", "max_size": 1, "time": 2}
@@ -243,6 +244,7 @@ BASES = {
     "/api/error": {"model": "log", "n": "1:3"},
     "/api/glsl": {"model": "ggx"},
     "/api/fit": {"model": "log", "n": "1:5", "time": 1, "generations": 5},
+    "/api/design": {"range": [1, 10], "ops": "fma", "max_cost": 1, "time": 1, "timing": False},
 }
 KEYS = {
     "/api/eval": ["model", "params", "form", "coef", "cos", "lobe", "theta_i", "theta_o", "phi_o"],
@@ -254,6 +256,8 @@ KEYS = {
     "/api/fit": ["data", "model", "params", "form", "n", "round", "ops", "constants", "size_weights", "metric",
                  "choose", "max_size", "seed", "generations", "population", "islands", "enumerate_size",
                  "test_fraction"],
+    "/api/design": ["target", "params", "form", "param", "range", "objective", "zone", "ops", "max_cost", "max_forms",
+                    "time", "seed", "timing"],
 }
 JSON_VALUES = [None, True, False, 0, -1, 1e308, -1e308, 2147483648, 9223372036854775808, 1e-320, "", "nan", "inf",
                "1:1e7", "1:", "a:b@c", "paper50", "1:1000000000", [], [None], [1e308], ["x"], {}, {"n": "x"},
@@ -292,16 +296,16 @@ def body_variant(rng, endpoint):
             body[rng.choice(["nope", "Model", "model ", "", "n\n", "time_s", "__proto__"])] = rng.choice(JSON_VALUES)
         elif body:
             del body[rng.choice(sorted(body))]
-    if endpoint == "/api/fit":
+    if endpoint in ("/api/fit", "/api/design"):
         body.setdefault("time", 1)
     return body
 
 
 def cancel_job(ctx, resp):
-    """DELETEs a fit job the fuzz started, so that it does not hold one of the two slots."""
+    """DELETEs a fit or design job the fuzz started, so that it does not hold a slot."""
     try:
-        job = json.loads(resp.body)["job"]
-        http_raw.get(ctx.addr, f"/api/fit/{job}", method="DELETE")
+        url = json.loads(resp.body)["url"]
+        http_raw.get(ctx.addr, url, method="DELETE")
     except (ValueError, KeyError, TypeError):
         pass
 

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
+#include <mutex>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
@@ -135,7 +136,7 @@ std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> f
   l.formula = expr::to_infix(lawful->lobe);
   l.shape = shape.key;
   l.model_cost = shape.cost;
-  set_errors(l, domain_error(lobe_of("lobe: " + l.formula, s), s, stop));
+  set_errors(l, domain_error(l, s, stop));
   if (stop()) return std::nullopt;  // a measurement cut short understates
   return l;
 }
@@ -162,17 +163,6 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
     out.push_back(std::move(l));
   }
   return out;
-}
-
-bool is_formula(const Lobe& l) { return !l.reference || l.id == "spherical-gaussian"; }
-
-std::function<lobes::Lobe(double)> lobe_function(const Lobe& l, const Settings& s) {
-  if (is_formula(l)) return lobe_of("lobe: " + l.formula, s);
-  return [id = l.id, &s](double p) {
-    ParamValues params;
-    params[s.param] = p;
-    return make_model(id, params).lobe();
-  };
 }
 
 // Times every lobe in one harness: formulas compiled as native kernels, built-ins through the
@@ -211,9 +201,7 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
     note = fmt::format("formula lobes not timed ({}): their cost is the cost model's", e.what());
   }
   for (Lobe* l : builtin_lobes) {
-    ParamValues params;
-    params[s.param] = p;
-    const lobes::Lobe lobe = make_model(l->id, params).lobe();
+    const lobes::Lobe lobe = lobe_at(*l, s)(p).lobe();
     for (cost::Path path : {cost::Path::exact, cost::Path::fast}) {
       kernels.push_back(cost::lobe_kernel(lobe, path));
       timed.emplace_back(l, fmt::format("specula bench kernel, {} tier, float", cost::to_string(path)));
@@ -243,12 +231,7 @@ std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   std::string why;
   const auto count = [&](Lobe& l) {
     if (!why.empty()) return;
-    ParamValues params;
-    params[s.param] = timing_param(s);
-    const bool formula = is_formula(l);
-    const auto info = model_definition(formula ? "lobe: " + l.formula : l.id, params);
-    if (!info->find_param(s.param)) params.clear();
-    if (const auto n = lobe_spirv_instructions(make_model(info, params), work, stop, why)) l.spirv_instructions = *n;
+    if (const auto n = lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work, stop, why)) l.spirv_instructions = *n;
   };
   for (auto& l : result.front) count(l);
   for (auto& l : result.references) count(l);
@@ -269,7 +252,7 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
   result.references = reference_lobes(s);
   if (!result.cancelled) {
     try {
-      for (auto& r : result.references) set_errors(r, domain_error(lobe_function(r, s), s, stop));
+      for (auto& r : result.references) set_errors(r, domain_error(r, s, stop));
     } catch (const Interrupted&) {
       result.cancelled = true;
     }
@@ -307,11 +290,6 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
 
 }  // namespace
 
-double timing_param(const Settings& s) {
-  if (s.lo <= 20 && 20 <= s.hi) return 20;
-  return s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
-}
-
 int operation_cost(Operation op) {
   switch (op) {
     case Operation::fma:
@@ -347,7 +325,12 @@ std::vector<Operation> parse_operations(std::string_view text) {
 }
 
 void validate(const Settings& s) {
-  const auto info = model_definition(s.target, s.params);
+  std::shared_ptr<const ModelInfo> info;
+  try {
+    info = model_definition(s.target, s.params);
+  } catch (const InvalidField& e) {  // the catalogue names its argument "model": here it is the target
+    throw InvalidField(e.field() == "model" ? "target" : e.field(), e.what());
+  }
   if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
   const ParamInfo* p = info->find_param(s.param);
   if (!p) throw InvalidField("range", fmt::format("the target '{}' has no parameter '{}'", s.target, s.param));
@@ -384,11 +367,12 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   result.settings = s;
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
 
-  // 1. Every shape, this shard's share, screened on a few parameter values.
+  // 1. The first max_forms shapes (all shards' together), this shard's share, screened on a few
+  // parameter values.
   const auto limit = static_cast<std::size_t>(s.max_forms.value_or(Ranges::forms));
-  const std::vector<Shape> all = enumerate_shapes(s.operations, s.max_cost, std::numeric_limits<std::size_t>::max());
+  const std::vector<Shape> all = enumerate_shapes(s.operations, s.max_cost, limit);
   std::vector<std::size_t> mine;
-  for (std::size_t i = 0; i < all.size() && mine.size() < limit; ++i)
+  for (std::size_t i = 0; i < all.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);
   result.forms_total = static_cast<std::int64_t>(mine.size());
   const std::vector<Samples> screen = samples_over(s, kScreenGrid);
@@ -401,30 +385,55 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
     const std::size_t last = std::min(mine.size(), first + kChunk);
     std::vector<Screened> chunk(last - first);
     arena.execute([&] {
-      tbb::parallel_for(first, last, [&](std::size_t i) { chunk[i - first] = {mine[i], fit_over_grid(all[mine[i]], screen, s)}; });
+      tbb::parallel_for(first, last, [&](std::size_t i) {
+        if (!stop()) chunk[i - first] = {mine[i], fit_over_grid(all[mine[i]], screen, s)};  // a stop ends it at once
+      });
     });
+    if (stop()) {
+      result.cancelled = true;
+      break;
+    }
     screened.insert(screened.end(), chunk.begin(), chunk.end());
     result.forms_screened = static_cast<std::int64_t>(screened.size());
     tell("screening shapes", result.forms_screened, static_cast<std::int64_t>(mine.size()), nullptr);
   }
 
-  // 2. The promising ones on the fine grid, then laws for their constants and the whole domain.
+  // 2. The promising ones on the fine grid, then laws for their constants and the whole domain;
+  // with both objectives, each is fitted once for each (the front then holds either).
   const std::vector<std::size_t> candidates = promising(all, screened);
-  const std::vector<Samples> fine = samples_over(s, kFineGrid);
-  std::vector<std::optional<Lobe>> finished(candidates.size());
-  std::atomic<std::int64_t> done = 0;
+  std::vector<Settings> fits;
+  for (const Objective o : {Objective::max_abs, Objective::max_rel})
+    if (s.objective == o || s.objective == Objective::both) {
+      fits.push_back(s);
+      fits.back().objective = o;
+    }
+  std::vector<std::vector<Samples>> fine;
+  for (const Settings& f : fits) fine.push_back(samples_over(f, kFineGrid));
+  const std::size_t tasks = candidates.size() * fits.size();
+  std::vector<std::optional<Lobe>> finished(tasks);
+  std::mutex finishing;  // guards what follows; progress sees the front of the lobes finished so far
+  std::int64_t done = 0;
+  std::vector<Lobe> so_far;
+  const auto total = static_cast<std::int64_t>(tasks);
+  tell("finishing lobes", 0, total, nullptr);
   arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+    tbb::parallel_for(std::size_t{0}, tasks, [&](std::size_t i) {
       if (stop()) return;
+      const std::size_t fit = i % fits.size();
+      std::optional<Lobe> lobe;
       try {
-        finished[i] = finished_lobe(all[candidates[i]], fine, s, stop);
+        lobe = finished_lobe(all[candidates[i / fits.size()]], fine[fit], fits[fit], stop);
       } catch (const Interrupted&) {
         return;  // a stop: the lobes finished so far are the result
       }
+      const std::lock_guard lock(finishing);
+      finished[i] = lobe;
       ++done;
+      if (lobe && std::isfinite(objective_error(*lobe, s.objective))) so_far.push_back(*lobe);
+      const std::vector<Lobe> front = pareto(so_far, s.objective, false);
+      tell("finishing lobes", done, total, &front);
     });
   });
-  tell("finishing lobes", done, static_cast<std::int64_t>(candidates.size()), nullptr);
   if (stopper.cancelled()) result.cancelled = true;
 
   std::vector<Lobe> members;

@@ -62,14 +62,6 @@ std::vector<double> free_values(const expr::Expression& e) {
   return out;
 }
 
-// The identity start: every affine map a·x + b at a = 1, b = 0.
-std::vector<double> identity_start(const Shape& shape) {
-  std::vector<double> out;
-  for (const auto& n : shape.nodes)
-    if (n.op == Op::constant && !expr::is_exact(n)) out.push_back(n.value);
-  return out;
-}
-
 struct Fitted {
   std::vector<double> constants;  // every constant, fixed ones included
   double error = INFINITY;
@@ -115,18 +107,10 @@ Fitted fit_once(const Shape& shape, const Samples& rows, const Settings& s, std:
 
 }  // namespace
 
-lobes::Lobe target_at(const Settings& s, double p) {
-  ParamValues params = s.params;
-  params[s.param] = p;
-  const Model m = make_model(s.target, params, s.form);
-  if (!m.is_lobe()) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
-  return m.lobe();
-}
-
 std::vector<double> param_grid(double lo, double hi, std::size_t count) {
   std::vector<double> out;
   if (count == 1 || lo == hi) return {lo};
-  const bool log = lo > 0 && hi / lo >= 4;
+  const bool log = log_spaced(lo, hi);
   for (std::size_t i = 0; i < count; ++i) {
     const double t = static_cast<double>(i) / static_cast<double>(count - 1);
     out.push_back(i + 1 == count ? hi : log ? lo * std::pow(hi / lo, t) : lo + (hi - lo) * t);
@@ -135,7 +119,7 @@ std::vector<double> param_grid(double lo, double hi, std::size_t count) {
 }
 
 Samples samples_at(const Settings& s, double p) {
-  Samples out{p, target_at(s, p), {}, {}};
+  Samples out{p, target_at(s, p).lobe(), {}, {}};
   const double width = half_max_u(out.target);
   const auto add = [&](double u) {
     const double value = lobes::at_log_cos(out.target, u);
@@ -166,7 +150,7 @@ GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const S
   GridFit out;
   const auto fixed_at = [&](std::size_t i) { return fixed.empty() ? std::span<const double>() : std::span<const double>(fixed[i]); };
   std::mt19937_64 rng(s.seed ^ std::hash<std::string>{}(shape.key));
-  const std::vector<double> identity = identity_start(shape);
+  const std::vector<double> identity = free_values(shape.expression());  // every a·x + b at a = 1, b = 0
   std::vector<double> previous;  // the free constants of the last grid value
   for (std::size_t i = 0; i < grid.size(); ++i) {
     const std::size_t held = fixed_at(i).size();

@@ -20,11 +20,7 @@ struct Samples {
   std::vector<double> c, value;  ///< rows: cosines and the target there
 };
 
-/// The target lobe at parameter value `p` (Settings' model, params and form). Throws
-/// InvalidField "target" if the model is not a lobe.
-lobes::Lobe target_at(const Settings& s, double p);
-
-/// `count` parameter values over [lo, hi]: log-spaced when lo > 0 and hi/lo ≥ 4, else even.
+/// `count` parameter values over [lo, hi], log-spaced or even as log_spaced(lo, hi) says.
 std::vector<double> param_grid(double lo, double hi, std::size_t count);
 
 /// The rows the fits use at p: for max_rel only those where the target is ≥ zone.

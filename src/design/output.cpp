@@ -37,21 +37,19 @@ double log_ns(const Result& r) {
   return NAN;
 }
 
+// A member's normalization: its k(p) in closed form, else "quadrature"; empty for references.
+std::string normalization_of(const Lobe& l) {
+  if (l.reference) return {};
+  return l.k_formula.empty() ? "quadrature" : l.k_formula;
+}
+
 std::string row(const Lobe& l, double log) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
                      csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
                      number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
                      l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
                      l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing),
-                     number(l.k), csv_field(l.check));
-}
-
-Form target_form(const Settings& s) {
-  if (s.form) return *s.form;
-  ParamValues params = s.params;
-  params[s.param] = s.lo;
-  const Model m = make_model(s.target, params);
-  return m.is_lobe() ? m.form() : Form::rv;
+                     number(l.k), csv_field(l.check), csv_field(normalization_of(l)));
 }
 
 // A member's formula with constants to 6 digits (the files hold them in full).
@@ -65,27 +63,39 @@ std::string shown(const Lobe& l) {
 std::string front_csv(const Result& result) {
   std::string out =
       "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
-      "spirv_instructions,model_cost,shape,timing,k,check\n";
+      "spirv_instructions,model_cost,shape,timing,k,check,normalization\n";
   const double log = log_ns(result);
   for (const auto& l : result.front) out += row(l, log);
   for (const auto& l : result.references) out += row(l, log);
   return out;
 }
 
+MemberModel member_model(const Result& result, const Lobe& l, bool normalized) {
+  const Settings& s = result.settings;
+  return {normalized ? l.id + "-normalized" : l.id,
+          fmt::format("designed lobe {}{}", l.id, normalized ? ", normalized" : ""),
+          fmt::format("max |F − {}| = {:.4g} over {} in [{:g}, {:g}]", s.target, l.max_abs, s.param, s.lo, s.hi),
+          target_form(s),
+          l.formula,
+          normalized ? normalization_of(l) : "none",
+          s.param,
+          timing_param(s),
+          s.lo,
+          s.hi};
+}
+
 std::string models_toml(const Result& result) {
   const Settings& s = result.settings;
   std::string out = fmt::format("# Lobes designed by specula design against {} over {} in [{:g}, {:g}] ({}).\n",
                                 s.target, s.param, s.lo, s.hi, to_string(s.objective));
-  const double p = s.lo <= 20 && 20 <= s.hi ? 20 : s.lo;
   for (const auto& l : result.front) {
     for (bool normalized : {false, true}) {
+      const MemberModel m = member_model(result, l, normalized);
       out += fmt::format(
           "\n[[model]]\nid = {}\nname = {}\nsource = \"specula design\"\nsummary = {}\nkind = \"lobe\"\nform = \"{}\"\n"
-          "lobe = {}\nnormalization = \"{}\"\n[model.params.{}]\ndefault = {:.17g}\nmin = {:.17g}\nmax = {:.17g}\n",
-          toml_string(normalized ? l.id + "-normalized" : l.id),
-          toml_string(fmt::format("designed lobe {}{}", l.id, normalized ? ", normalized" : "")),
-          toml_string(fmt::format("max |F − {}| = {:.4g} over {} in [{:g}, {:g}]", s.target, l.max_abs, s.param, s.lo, s.hi)),
-          to_string(target_form(s)), toml_string(l.formula), normalized ? "quadrature" : "none", s.param, p, s.lo, s.hi);
+          "lobe = {}\nnormalization = {}\n[model.params.{}]\ndefault = {:.17g}\nmin = {:.17g}\nmax = {:.17g}\n",
+          toml_string(m.id), toml_string(m.name), toml_string(m.summary), to_string(m.form), toml_string(m.lobe),
+          toml_string(m.normalization), m.param, m.default_value, m.min, m.max);
     }
   }
   return out;

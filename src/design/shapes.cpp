@@ -5,6 +5,7 @@
 #include "shapes.h"
 
 #include <algorithm>
+#include <array>
 #include <unordered_set>
 
 #include "specula/exceptions.h"
@@ -126,36 +127,42 @@ expr::Expression with_constants(const Shape& shape, std::span<const double> valu
 
 std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit) {
   const auto allowed = [&](Operation o) { return std::ranges::find(operations, o) != operations.end(); };
-  std::vector<std::vector<Shape>> by_cost(static_cast<std::size_t>(std::max(max_cost, 0)) + 1);
+  // at_most[cost][k]: the indices into `all` of the shapes of that cost with at most k free
+  // constants, in the order found. A binary step pairs x only with the y whose constants fit, so
+  // every pair visited builds a shape and the work is bounded by `limit`.
+  using ByConstants = std::array<std::vector<std::size_t>, kMaxShapeConstants + 1>;
+  std::vector<ByConstants> at_most(static_cast<std::size_t>(std::max(max_cost, 0)) + 1);
   std::vector<Shape> all;
   std::unordered_set<std::string> seen;
   const auto full = [&] { return all.size() >= limit; };
   const auto add = [&](Shape s) {
     if (full() || s.constants > kMaxShapeConstants || s.cost > max_cost || !seen.insert(s.key).second) return;
-    by_cost[static_cast<std::size_t>(s.cost)].push_back(s);
+    for (int k = s.constants; k <= kMaxShapeConstants; ++k)
+      at_most[static_cast<std::size_t>(s.cost)][static_cast<std::size_t>(k)].push_back(all.size());
     all.push_back(std::move(s));
+  };
+  const auto shapes = [&](int cost, int max_constants) -> const std::vector<std::size_t>& {
+    return at_most[static_cast<std::size_t>(cost)][static_cast<std::size_t>(max_constants)];
   };
   add(leaf());
   for (int cost = 1; cost <= max_cost && !full(); ++cost) {
     for (const auto& u : kUnary) {
       const int step_cost = operation_cost(u.operation);
       if (!allowed(u.operation) || step_cost > cost) continue;
-      for (const auto& x : by_cost[static_cast<std::size_t>(cost - step_cost)])
-        if (worth_applying(u.step, x)) add(unary(x, u.step, step_cost));
+      for (const std::size_t x : shapes(cost - step_cost, kMaxShapeConstants))
+        if (worth_applying(u.step, all[x])) add(unary(all[x], u.step, step_cost));
     }
     for (const auto& b : kBinary) {
       const int step_cost = operation_cost(b.operation);
       if (!allowed(b.operation)) continue;
-      for (int left = 0; left <= cost - step_cost; ++left) {
-        const int right = cost - step_cost - left;
-        for (const auto& x : by_cost[static_cast<std::size_t>(left)])
-          for (const auto& y : by_cost[static_cast<std::size_t>(right)]) {
-            if (full()) break;
-            if (b.commutative && !(x.key < y.key)) continue;  // x·y once; x·x is the square
-            if (b.step == Step::quotient && x.key == y.key) continue;
-            add(binary(x, y, b.step, step_cost));
+      for (int left = 0; left <= cost - step_cost; ++left)
+        for (const std::size_t x : shapes(left, kMaxShapeConstants))
+          for (const std::size_t y : shapes(cost - step_cost - left, kMaxShapeConstants - all[x].constants)) {
+            if (full()) return all;
+            if (b.commutative && !(all[x].key < all[y].key)) continue;  // x·y once; x·x is the square
+            if (b.step == Step::quotient && all[x].key == all[y].key) continue;
+            add(binary(all[x], all[y], b.step, step_cost));
           }
-      }
     }
   }
   return all;

@@ -18,16 +18,16 @@ struct AtParam {
   analysis::ApproximationError error;
 };
 
-AtParam error_at(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s, double p) {
-  return {p, analysis::approximation_error(lobe_at(p), target_at(s, p), s.zone)};
+AtParam error_at(const std::function<Model(double)>& lobe_at, const Settings& s, double p) {
+  return {p, analysis::approximation_error(lobe_at(p).lobe(), target_at(s, p).lobe(), s.zone)};
 }
 
 // Golden-section search for the largest `value` on [a, b] in t = log p (or p), from the best
 // of the grid.
 template <class Value>
-AtParam refine(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s, double a, double b,
+AtParam refine(const std::function<Model(double)>& lobe_at, const Settings& s, double a, double b,
                AtParam best, Value value, const std::function<bool()>& stop) {
-  const bool log = s.lo > 0 && s.hi / s.lo >= 4;
+  const bool log = log_spaced(s.lo, s.hi);
   const auto to_p = [&](double t) { return log ? std::exp(t) : t; };
   double lo = log ? std::log(a) : a, hi = log ? std::log(b) : b;
   constexpr double kGolden = 0.6180339887498949;
@@ -53,17 +53,8 @@ AtParam refine(const std::function<lobes::Lobe(double)>& lobe_at, const Settings
 
 }  // namespace
 
-std::function<lobes::Lobe(double)> lobe_of(const std::string& id, const Settings& s) {
-  const auto info = model_definition(id, {{s.param, s.lo}});
-  return [info, &s](double p) {
-    ParamValues own;  // the formula's parameters: the range parameter, unless F does not read it
-    if (info->find_param(s.param)) own[s.param] = p;
-    return make_model(info, own).lobe();
-  };
-}
-
-DomainError domain_error(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s,
-                         const std::function<bool()>& stop) {
+DomainError domain_error(const Lobe& l, const Settings& s, const std::function<bool()>& stop) {
+  const std::function<Model(double)> lobe_at = design::lobe_at(l, s);
   const std::vector<double> grid = param_grid(s.lo, s.hi, kVerifyGrid);
   std::vector<AtParam> at;
   for (double p : grid) {

@@ -18,11 +18,7 @@ struct DomainError {
 /// Parameter values of the dense grid before refinement.
 inline constexpr std::size_t kVerifyGrid = 97;
 
-/// The errors of `lobe_at(p)` against the target over [lo, hi].
-DomainError domain_error(const std::function<lobes::Lobe(double)>& lobe_at, const Settings& s,
-                         const std::function<bool()>& stop);
-
-/// The lobe of the model definition `id` (an inline "lobe: …" or a registered id) at p.
-std::function<lobes::Lobe(double)> lobe_of(const std::string& id, const Settings& s);
+/// The errors of lobe l against the target over the settings' range.
+DomainError domain_error(const Lobe& l, const Settings& s, const std::function<bool()>& stop);
 
 }  // namespace specula::design

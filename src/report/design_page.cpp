@@ -31,36 +31,15 @@ bool timed(const design::Result& r) {
 
 double cost_of(const design::Lobe& l, bool measured) { return measured ? l.ns_per_eval : l.model_cost; }
 
-// F at c for a member or reference lobe at parameter value p.
-std::function<double(double)> lobe_at(const design::Result& r, const design::Lobe& l, double p) {
-  const design::Settings& s = r.settings;
-  ParamValues params;
-  params[s.param] = p;
-  const bool formula = !l.reference || l.id == "spherical-gaussian";
-  const auto info = model_definition(formula ? "lobe: " + l.formula : l.id, params);
-  if (!info->find_param(s.param)) params.clear();
-  const Model m = make_model(info, params);
-  return [m](double c) { return lobes::eval(m.lobe(), c); };
+// F and the target as functions of c at parameter value p.
+std::function<double(double)> curve(const Model& m) {
+  return [lobe = m.lobe()](double c) { return lobes::eval(lobe, c); };
 }
 
-std::function<double(double)> target_at(const design::Settings& s, double p) {
-  ParamValues params = s.params;
-  params[s.param] = p;
-  const Model m = make_model(s.target, params, s.form);
-  return [m](double c) { return lobes::eval(m.lobe(), c); };
-}
-
-std::vector<double> curve_params(const design::Settings& s) {
-  const double mid = s.lo > 0 && s.hi / s.lo >= 4 ? std::sqrt(s.lo * s.hi) : (s.lo + s.hi) / 2;
-  return {s.lo, mid, s.hi};
-}
+std::vector<double> curve_params(const design::Settings& s) { return {s.lo, design::middle(s.lo, s.hi), s.hi}; }
 
 std::string member_glsl(const design::Result& r, const design::Lobe& l) {
-  const design::Settings& s = r.settings;
-  const auto info = model_definition("lobe: " + l.formula, {{s.param, s.lo}});
-  ParamValues params;
-  if (info->find_param(s.param)) params[s.param] = design::timing_param(s);
-  return glsl::model_glsl(make_model(info, params));
+  return glsl::model_glsl(design::lobe_at(l, r.settings)(design::timing_param(r.settings)));
 }
 
 }  // namespace
@@ -99,9 +78,10 @@ Chart design_error_chart(const design::Result& r, const design::Lobe& member) {
   chart.y = {"|F − target|", Scale::linear, 0.0, {}};
   const char* colours[] = {"#0072B2", "#D55E00", "#009E73"};
   std::size_t k = 0;
+  const auto member_at = design::lobe_at(member, s);
   for (double p : curve_params(s)) {
-    const auto f = lobe_at(r, member, p);
-    const auto t = target_at(s, p);
+    const auto f = curve(member_at(p));
+    const auto t = curve(design::target_at(s, p));
     Series series{fmt::format("{} = {:g}", s.param, p), colours[k++ % 3], {}, {}, Stroke::solid, false, {}};
     for (int i = 0; i <= 400; ++i) {
       const double c = std::pow(i / 400.0, 0.25);  // denser near 1, where narrow lobes live
@@ -131,13 +111,15 @@ std::string design_page(const design::Result& r) {
   for (const auto& l : r.front) {
     members += fmt::format(
         "<h2 id=\"{0}\">{0}</h2>\n<p><code>F = {1}</code></p>\n<p>Largest |F − {2}| = {3} at c = {4}, {5} = {6}; "
-        "largest relative error where {2} ≥ {7}: {8}. Normalized: k({5} = {9}) = {10} by quadrature (the model "
+        "largest relative error where {2} ≥ {7}: {8}. Normalized: k({5} = {9}) = {10} {15} (the model "
         "<code>{0}-normalized</code>); <code>specula check</code> at {5} = {11}: {12}.</p>\n<figure>{13}</figure>\n"
         "<details><summary>GLSL</summary><pre>{14}</pre></details>\n",
         xml_escape(l.id), xml_escape(l.formula), xml_escape(s.target), show(l.max_abs, 6), show(l.argmax_c, 6),
         xml_escape(s.param), show(l.argmax_param, 6), s.zone, show(l.max_rel, 6), show(design::timing_param(s), 4),
         show(l.k, 6), xml_escape(fmt::format("{:g}", fmt::join(design::check_params(s), ", "))),
-        xml_escape(l.check), to_svg(design_error_chart(r, l)), xml_escape(member_glsl(r, l)));
+        xml_escape(l.check), to_svg(design_error_chart(r, l)), xml_escape(member_glsl(r, l)),
+        l.k_formula.empty() ? std::string("by quadrature")
+                            : "in closed form, k(" + xml_escape(s.param) + ") = <code>" + xml_escape(l.k_formula) + "</code>");
   }
   return fmt::format(R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>specula design: {0}</title>

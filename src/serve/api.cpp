@@ -11,7 +11,9 @@
 
 #include "assets.h"
 #include "endpoints.h"
-#include "fit_jobs.h"
+#include "design_job.h"
+#include "fit_job.h"
+#include "jobs.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
@@ -45,9 +47,8 @@ std::vector<Route> analysis_routes(const Limits& limits) {
   return routes;
 }
 
-/// "/api/fit/17" → 17; nullopt for anything else under /api/fit/.
-std::optional<std::int64_t> job_id(std::string_view path) {
-  constexpr std::string_view prefix = "/api/fit/";
+/// "/api/fit/17" → 17 (prefix "/api/fit/"); nullopt for anything else under the prefix.
+std::optional<std::int64_t> job_id(std::string_view path, std::string_view prefix) {
   if (!path.starts_with(prefix)) return std::nullopt;
   const std::string_view digits = path.substr(prefix.size());
   std::int64_t id = 0;
@@ -64,19 +65,29 @@ Response method_not_allowed(const Request& r, std::string allowed) {
 
 Response not_found(const Request& r) { return error_response(404, fmt::format("no such resource: {}", r.path)); }
 
-Response fit_job(FitJobs& fits, const Request& r) {
-  const auto id = job_id(r.path);
+/// A kind of job: POST /api/KIND starts one, GET and DELETE /api/KIND/{id} poll and cancel it.
+struct JobRoutes {
+  std::string path;  ///< "/api/fit"
+  std::function<std::shared_ptr<Job>(std::string_view body)> make;
+  Jobs jobs;
+};
+
+Response job_request(JobRoutes& kind, const Request& r) {
+  const auto id = job_id(r.path, kind.path + "/");
   if (!id) return not_found(r);
   if (r.method != "GET" && r.method != "DELETE") return method_not_allowed(r, "GET, DELETE");
-  const auto answer = r.method == "GET" ? fits.status(*id) : fits.cancel(*id);
-  if (!answer) return error_response(404, fmt::format("no fit job {} (finished jobs are kept a while; cancelled ones are gone)", *id));
+  const auto answer = r.method == "GET" ? kind.jobs.status(*id) : kind.jobs.cancel(*id);
+  if (!answer)
+    return error_response(404, fmt::format("no {} job {} (finished jobs are kept a while; cancelled ones are gone)",
+                                           kind.jobs.kind(), *id));
   return json(*answer);
 }
 
-Response start_fit(FitJobs& fits, const Request& r) {
-  const std::int64_t id = fits.start(r.body);
-  Response response = json(nlohmann::ordered_json{{"job", id}, {"url", fmt::format("/api/fit/{}", id)}}.dump() + "\n", 202);
-  response.headers.emplace_back("Location", fmt::format("/api/fit/{}", id));
+Response start_job(JobRoutes& kind, const Request& r) {
+  const std::int64_t id = kind.jobs.start(kind.make(r.body));
+  const std::string url = fmt::format("{}/{}", kind.path, id);
+  Response response = json(nlohmann::ordered_json{{"job", id}, {"url", url}}.dump() + "\n", 202);
+  response.headers.emplace_back("Location", url);
   return response;
 }
 
@@ -123,10 +134,16 @@ class Admission {
 
 struct Api::State {
   explicit State(const Limits& l)
-      : limits(l), fits(limits), routes(analysis_routes(limits)), admission(limits.max_busy_requests) {}
+      : limits(l),
+        fits{"/api/fit", [this](std::string_view body) { return fit_job(body, limits); },
+             Jobs("fit", limits.max_running_fits, limits.max_kept_fits, limits.stop_seconds)},
+        designs{"/api/design", [this](std::string_view body) { return design_job(body, limits); },
+                Jobs("design", limits.max_running_designs, limits.max_kept_designs, limits.stop_seconds)},
+        routes(analysis_routes(limits)),
+        admission(limits.max_busy_requests) {}
   const Limits limits;
-  FitJobs fits;
-  const std::vector<Route> routes;  ///< fixed routes; /api/fit and /api/fit/{id} are matched in route()
+  JobRoutes fits, designs;
+  const std::vector<Route> routes;  ///< fixed routes; the jobs' routes are matched in route()
   Admission admission;
   std::atomic<bool> stopping{false};  ///< the cancel flag of every request's work limit
 };
@@ -164,11 +181,13 @@ Response route(Api::State& state, const Request& request) {
   const Request& r = request.method == "HEAD" ? get_for_head : request;
   if (r.body.size() > state.limits.max_body_bytes)
     return error_response(413, fmt::format("the body has {} bytes; at most {}", r.body.size(), state.limits.max_body_bytes), "body");
-  if (r.path == "/api/fit") {
-    if (r.method != "POST") return method_not_allowed(request, "POST");
-    return admitted(state, [&] { return start_fit(state.fits, r); });
+  for (JobRoutes* kind : {&state.fits, &state.designs}) {
+    if (r.path == kind->path) {
+      if (r.method != "POST") return method_not_allowed(request, "POST");
+      return admitted(state, [&] { return start_job(*kind, r); });
+    }
+    if (r.path.starts_with(kind->path + "/")) return job_request(*kind, r);
   }
-  if (r.path.starts_with("/api/fit/")) return fit_job(state.fits, r);
   const auto same_path = [&](const Route& route) { return route.path == r.path; };
   const auto match = std::find_if(routes.begin(), routes.end(), same_path);
   if (match == routes.end()) return r.path.starts_with("/api/") || r.path == "/api" ? not_found(r) : asset(r);
@@ -192,11 +211,14 @@ Api::~Api() = default;
 
 const Limits& Api::limits() const noexcept { return state_->limits; }
 
-void Api::cancel_fits() { state_->fits.cancel_all(); }
+void Api::cancel_jobs() {
+  state_->fits.jobs.cancel_all();
+  state_->designs.jobs.cancel_all();
+}
 
 void Api::stop() {
   state_->stopping = true;
-  state_->fits.cancel_all();
+  cancel_jobs();
 }
 
 Response Api::handle(const Request& request) {
@@ -209,10 +231,10 @@ Response Api::handle(const Request& request) {
     return error_response(400, e.what(), e.field());
   } catch (const InvalidArgument& e) {
     return error_response(400, e.what(), "body");
-  } catch (const TooManyFits& e) {
-    if (e.winding_down > 0 && e.running < state_->limits.max_running_fits)
-      return error_response(429, fmt::format("{} cancelled fit jobs are still ending: retry in a moment", e.winding_down));
-    return error_response(429, fmt::format("{} fit jobs are running, the most at once: wait for one or cancel it", e.running));
+  } catch (const TooManyJobs& e) {
+    if (e.winding_down > 0 && e.running < e.most)
+      return error_response(429, fmt::format("{} cancelled {} jobs are still ending: retry in a moment", e.winding_down, e.kind));
+    return error_response(429, fmt::format("{} {} jobs are running, the most at once: wait for one or cancel it", e.running, e.kind));
   } catch (const Interrupted& e) {
     if (e.reason() == Interrupted::Reason::deadline)
       return error_response(503, fmt::format("the request needs more than {} s of work, the most one may take: ask for less "

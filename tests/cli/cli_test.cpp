@@ -1014,25 +1014,8 @@ TEST_F(Cli, OutOntoADirectory) {
   EXPECT_THAT(listing(work().parent_path()), ::testing::UnorderedElementsAre("work", "capture"));
 }
 
-TEST_F(Cli, ReportWritesIndexAndFig5) {
-  const fs::path out = work() / "report";
-  const Result r = run({"report", "--quick", "--out", out.string()});  // the full report takes a minute
-  ASSERT_EQ(r.code, 0) << r;
-  EXPECT_THAT(r.out, IsEmpty());
-  ASSERT_TRUE(fs::exists(out / "index.html"));
-  ASSERT_TRUE(fs::exists(out / "fig5-normalization.csv"));
-  EXPECT_THAT(read_file(out / "index.html"), HasSubstr("<html"));
-  const std::string csv = read_file(out / "fig5-normalization.csv");
-  EXPECT_EQ(lines_of(csv).size(), 51u);
-  const Csv table = parse_csv(csv);
-  ASSERT_EQ(table.rows.size(), 50u);
-  EXPECT_EQ(table.rows.front()[0], 1.0);
-  EXPECT_EQ(table.rows.back()[0], 1000.0);
-  EXPECT_NEAR(table.rows.front()[1], kCoef1, 1e-15 * kCoef1);
-  EXPECT_NEAR(table.rows.back()[1], kCoef1000, 1e-15 * kCoef1000);
-  for (const auto& name : listing(out)) EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
-}
-
+// `specula report --quick` itself (its files, its stdout and stderr) is checked by
+// tests/report/report_page_test.cpp, which runs it once for all its tests.
 TEST_F(Cli, ReportIntoAFileFails) {
   const fs::path file = work() / "afile";
   std::ofstream(file) << "x";

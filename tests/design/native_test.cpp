@@ -15,7 +15,8 @@ namespace {
 class NativeTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (native_compiler().empty()) GTEST_SKIP() << "no C++ compiler to build kernels with";
+    // The build's compiler is always there for the tests: none found is a fault, not a skip.
+    ASSERT_FALSE(native_compiler().empty()) << "no C++ compiler to build kernels with";
     dir_ = std::filesystem::temp_directory_path() / ("specula-native-test-" + std::to_string(getpid()));
     std::filesystem::create_directories(dir_);
   }

@@ -66,6 +66,23 @@ TEST(Shapes, TheRedundancyChecksSeeRedundancy) {  // the negative control of the
 
 TEST(Shapes, TheLimitIsHeld) { EXPECT_EQ(enumerate_shapes(parse_operations("all"), 12, 50).size(), 50u); }
 
+TEST(Shapes, ALimitIsAPrefixOfTheWholeOrder) {  // what makes --max-forms one budget for all shards
+  const auto ops = parse_operations("fma,mul,max,div");
+  const auto whole = enumerate_shapes(ops, 6, 1'000'000);
+  const auto first = enumerate_shapes(ops, 6, 300);
+  ASSERT_GT(whole.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) EXPECT_EQ(first[i].key, whole[i].key) << i;
+}
+
+TEST(Shapes, TheLargestCostIsBoundedByTheLimit) {  // --max-cost 24: the limit, not the space, bounds it
+  const auto shapes = enumerate_shapes(parse_operations("all"), 24, 20'000);
+  ASSERT_EQ(shapes.size(), 20'000u);
+  for (const Shape& s : shapes) {
+    EXPECT_LE(s.cost, 24);
+    EXPECT_LE(s.constants, kMaxShapeConstants);
+  }
+}
+
 TEST(Shapes, ConstantsAreSetInNodeOrder) {
   const auto shapes = enumerate_shapes(parse_operations("fma,max,mul"), 3, 1'000'000);
   const auto it = std::ranges::find_if(shapes, [](const Shape& s) { return s.key == "max(c * 7 + 7, 0) ^ 2"; });

@@ -31,25 +31,6 @@ class ReportTest : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir); }
 };
 
-TEST_F(ReportTest, WritesFig5WithThePapersRowsMatched) {
-  std::vector<std::string> sections;
-  write_report({dir, true, [&](std::string_view s) { sections.emplace_back(s); }});
-  EXPECT_FALSE(sections.empty());
-  const std::string html = read_file(dir / "index.html");
-  EXPECT_NE(html.find("Fig. 5"), std::string::npos);
-  EXPECT_NE(html.find("<td>0.483</td><td>0.483</td>"), std::string::npos);
-  EXPECT_NE(html.find("<td>1.634</td><td>1.634</td>"), std::string::npos);
-  EXPECT_EQ(html.find(">differs</td>"), std::string::npos);  // the verdict cell of a Fig. 5 row
-  EXPECT_EQ(html.find("http://"), std::string::npos);   // self-contained: no external references
-  EXPECT_EQ(html.find("https://"), std::string::npos);
-  EXPECT_EQ(html.find("<script src"), std::string::npos);
-
-  const std::string csv = read_file(dir / "fig5-normalization.csv");
-  EXPECT_EQ(csv.rfind("n,coef_exact,coef_exact_3dp,coef_paper_fit,delta_paper_fit\n1,", 0), 0u);
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 51);
-  EXPECT_NE(csv.find("\n1000,197.498610080195"), std::string::npos);
-}
-
 TEST_F(ReportTest, RefusesAnOutputThatIsAFile) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "file") << "x";
@@ -57,7 +38,8 @@ TEST_F(ReportTest, RefusesAnOutputThatIsAFile) {
 }
 
 
-// The sections beyond the paper, from one quick report shared by the tests below.
+// The paper's figures and the sections beyond it, from one quick report shared by the tests below
+// (one process: SHARED_SUITES in tests/report/CMakeLists.txt).
 class BeyondThePaperTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -65,7 +47,8 @@ class BeyondThePaperTest : public ::testing::Test {
                                      ("specula-report-beyond-" +
                                       std::to_string(::testing::UnitTest::GetInstance()->random_seed())));
     register_model_file(SPECULA_SOURCE_DIR "/tests/report/user_lobes.toml");
-    write_report({*dir_, true});
+    sections_ = new std::vector<std::string>;
+    write_report({*dir_, true, [](std::string_view s) { sections_->emplace_back(s); }});
     html_ = new std::string(read_file(*dir_ / "index.html"));
   }
   static void TearDownTestSuite() {
@@ -73,9 +56,11 @@ class BeyondThePaperTest : public ::testing::Test {
     std::filesystem::remove_all(*dir_);
     delete dir_;
     delete html_;
+    delete sections_;
   }
 
   static const std::filesystem::path& dir() { return *dir_; }
+  static const std::vector<std::string>& sections() { return *sections_; }
   static const std::string& html() { return *html_; }
 
   /// The HTML of the section `id`.
@@ -110,7 +95,24 @@ class BeyondThePaperTest : public ::testing::Test {
  private:
   static inline std::filesystem::path* dir_ = nullptr;
   static inline std::string* html_ = nullptr;
+  static inline std::vector<std::string>* sections_ = nullptr;
 };
+
+TEST_F(BeyondThePaperTest, WritesFig5WithThePapersRowsMatched) {
+  EXPECT_FALSE(sections().empty());  // progress, section by section
+  EXPECT_NE(html().find("Fig. 5"), std::string::npos);
+  EXPECT_NE(html().find("<td>0.483</td><td>0.483</td>"), std::string::npos);
+  EXPECT_NE(html().find("<td>1.634</td><td>1.634</td>"), std::string::npos);
+  EXPECT_EQ(html().find(">differs</td>"), std::string::npos);  // the verdict cell of a Fig. 5 row
+  EXPECT_EQ(html().find("http://"), std::string::npos);   // self-contained: no external references
+  EXPECT_EQ(html().find("https://"), std::string::npos);
+  EXPECT_EQ(html().find("<script src"), std::string::npos);
+
+  const std::string csv = read_file(dir() / "fig5-normalization.csv");
+  EXPECT_EQ(csv.rfind("n,coef_exact,coef_exact_3dp,coef_paper_fit,delta_paper_fit\n1,", 0), 0u);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 51);
+  EXPECT_NE(csv.find("\n1000,197.498610080195"), std::string::npos);
+}
 
 TEST_F(BeyondThePaperTest, HasTheThreeSectionsWithTheirFigures) {
   for (const char* id : {"energy", "fitted-norms", "cost"}) {

@@ -178,7 +178,7 @@ TEST(ServeFit, StoppingTheServerCancelsItsJobs) {
   Api api;  // what Server::stop() calls, without the transport
   const Response started = api.handle({"POST", "/api/fit", R"({"model": "log", "generations": 100000, "time": 60})"});
   ASSERT_EQ(started.status, 202) << started.body;
-  api.cancel_fits();
+  api.cancel_jobs();
   json status;
   for (int i = 0; i < 3000; ++i) {  // bounded: a cancelled job stops within one budget check
     status = json::parse(api.handle({"GET", "/api/fit/1", ""}).body);

@@ -176,6 +176,30 @@ TEST_F(Page, TheFitPanelsSnapSwitchReachesTheServer) {
                                  "/: (done|failed)/.test(document.getElementById('fit-status').textContent);"));
 }
 
+// The designer panel: a small search's front, references set apart, and one click puts a member
+// on the page as a model card with its sphere.
+TEST_F(Page, TheDesignPanelAddsAMemberToThePagesModels) {
+  open(kState);
+  for (const auto& [id, value] : {std::pair{"design-lo", "1"}, {"design-hi", "100"}, {"design-ops", "fma,mul"},
+                                  {"design-cost", "2"}, {"design-time", "10"}})
+    browser_->run(fmt::format("document.getElementById('{}').value = '{}';", id, value));
+  browser_->run("document.getElementById('design-timing').checked = false;");
+  browser_->click("#design-start");
+  ASSERT_TRUE(browser_->wait_for("return /: (done|stopped|failed)/.test(document.getElementById('design-status').textContent);", 300));
+  EXPECT_THAT(browser_->run("return document.getElementById('design-status').textContent;").get<std::string>(), HasSubstr(": done"));
+  const int members = browser_->run("return document.querySelectorAll('#design-front tbody tr.member').length;").get<int>();
+  ASSERT_GT(members, 0);
+  EXPECT_GE(browser_->run("return document.querySelectorAll('#design-front tbody tr.reference').length;").get<int>(), 2);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#design-front tbody button').length;").get<int>(), members);
+  const std::string id = browser_->run("return document.querySelector('#design-front tr.member td').textContent;").get<std::string>();
+  const int done = renders();
+  browser_->click("#design-front tr.member button");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('sphere-2') !== null;"));
+  EXPECT_EQ(state()["models"][2]["id"], id + "-normalized");
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#checks tbody tr').length;"), 3);
+}
+
 /// The editor's default definition as a model file, for the CPU renderer's image of it.
 Model editor_default_model() {
   const auto infos = parse_model_file(R"([[model]]

@@ -82,7 +82,7 @@ struct Settings {
   double zone = 0.5;             ///< the epicenter of max_rel: target ≥ zone
   std::vector<Operation> operations = parse_operations("all");
   int max_cost = 6;              ///< shapes up to this cost model
-  std::optional<std::int64_t> max_forms;  ///< at most this many forms screened (deterministic budget)
+  std::optional<std::int64_t> max_forms;  ///< the first this many shapes by cost, all shards together (deterministic budget)
   double time_s = 540;           ///< wall-clock budget of the screening
   std::uint64_t seed = 1;
   int threads = 0;               ///< 0: all cores
@@ -105,7 +105,8 @@ struct Lobe {
   double ns_per_eval = NAN;     ///< measured, float, one core, in cache; NaN if not measured
   std::string timing;           ///< how ns_per_eval was measured ("native", "bench fast tier", …)
   double spirv_instructions = NAN;  ///< the lobe's SPIR-V instructions beyond F = c's (glslang); NaN if unavailable
-  double k = NAN;               ///< members: k by quadrature at timing_param
+  double k = NAN;               ///< members: k at timing_param
+  std::string k_formula;        ///< members: k(p) in closed form, where one is derived; else empty (quadrature)
   std::string check;            ///< members: "pass", or what `specula check` finds failing, and where
 };
 
@@ -121,9 +122,12 @@ struct Result {
   std::string spirv_note;        ///< how the SPIR-V counts were obtained, or why not
 };
 
+/// What design() reports as it goes, from one thread at a time.
 struct Progress {
-  std::string_view phase;
+  std::string_view phase;  ///< screening shapes, finishing lobes, timing, checking, done
   std::int64_t done = 0, total = 0;
+  /// While finishing: the front (on the cost model's axis) of the lobes finished so far, their
+  /// ids unset; at done: the final front. Valid during the call only; else nullptr.
   const std::vector<Lobe>* front = nullptr;
 };
 
@@ -136,9 +140,27 @@ Result design(const Settings& settings, const std::function<void(const Progress&
 /// measured again, everything timed again in one run on this machine, the Pareto front taken anew.
 Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress = {});
 
+/// Whether a range is spanned in log p (lo > 0 and hi/lo ≥ 4) rather than in p: the grids of
+/// parameter values, the search for the worst one and the range's middle all follow it.
+bool log_spaced(double lo, double hi);
+/// The middle of [lo, hi] in that spacing (geometric when log-spaced).
+double middle(double lo, double hi);
+
 /// The parameter value lobes are timed and normalized at: 20 (the benchmark's n) where the range
-/// holds it, else the range's middle (geometric for a log-spaced range).
+/// holds it, else the range's middle.
 double timing_param(const Settings& s);
+
+/// The target lobe at value p of the range parameter, its other parameters the settings'.
+/// Throws InvalidField "target" if the model is not a lobe.
+Model target_at(const Settings& s, double p);
+/// The target's form: the settings', else the target model's own.
+Form target_form(const Settings& s);
+/// Whether l is a formula (every member, and the spherical-Gaussian reference) rather than a
+/// built-in model's id.
+bool is_formula(const Lobe& l);
+/// Lobe l (a member or a reference) as a model at each value of the range parameter, in the
+/// target's form, bare (normalization none). The model definition is read once.
+std::function<Model(double)> lobe_at(const Lobe& l, const Settings& s);
 
 /// The parameter values every member is checked at: the range's ends and timing_param.
 std::vector<double> check_params(const Settings& s);

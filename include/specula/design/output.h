@@ -9,11 +9,25 @@
 namespace specula::design {
 
 /// front.csv: id, kind (member|reference), formula, max_abs_error, argmax_c, argmax_param,
-/// max_rel_error, ns_per_eval, cost_vs_log, ops, spirv_instructions, model_cost, shape, timing.
+/// max_rel_error, ns_per_eval, cost_vs_log, ops, spirv_instructions, model_cost, shape, timing,
+/// k, check, normalization (k(p) in closed form, or quadrature).
 std::string front_csv(const Result& result);
 
+/// A member as a user model (docs/models.md): the keys of its models.toml entry, which
+/// `specula serve` sends as a definition object.
+struct MemberModel {
+  std::string id, name, summary;
+  Form form = Form::rv;
+  std::string lobe;           ///< F in c and the parameter
+  std::string normalization;  ///< "none" (bare), k(p) in closed form, or "quadrature"
+  std::string param;          ///< the range parameter: default timing_param, min lo, max hi
+  double default_value = 0, min = 0, max = 0;
+};
+/// Member l bare (ID) or normalized (ID-normalized).
+MemberModel member_model(const Result& result, const Lobe& l, bool normalized);
+
 /// models.toml: for every member ID (the bare lobe, normalization none) and ID-normalized
-/// (k by quadrature), with the range parameter's range.
+/// (k(p) in closed form where derived, else by quadrature), with the range parameter's range.
 std::string models_toml(const Result& result);
 
 /// The front as a plain-text table, members then references.

@@ -2,7 +2,7 @@
 // The JSON API of `specula serve` without the HTTP transport: a request (method, path, body) in,
 // a response (status, content type, body) out. Every /api response is JSON; errors are
 // {"error": "...", "field": "..."} with 400 (bad field), 404 (unknown route or job), 405 (wrong
-// method), 413 (body too large), 429 (too many fit jobs) or 503 (busy, past the request's time
+// method), 413 (body too large), 429 (too many fit or design jobs) or 503 (busy, past the request's time
 // cap, or stopping). Any other path is one of the page's assets compiled into the binary, or 404.
 // See docs/serve.md.
 #include <cstddef>
@@ -34,6 +34,11 @@ struct Limits {
   std::size_t max_running_fits = 2;
   std::size_t max_kept_fits = 16;         ///< finished jobs kept for polling; older ones are dropped
   double fit_grace_seconds = 5;           ///< past its time, a job's library calls stop (Interrupted)
+  double max_design_seconds = 120;        ///< a design job's screening
+  int max_design_cost = 5;                ///< a design job's max_cost (the CLI goes to 24)
+  std::size_t max_running_designs = 1;
+  std::size_t max_kept_designs = 4;
+  double design_grace_seconds = 300;      ///< past its screening: finishing, timing, checks (one core)
 
   // Time and concurrency: no request, connection or client holds the server.
   double request_seconds = 5;             ///< the work of one request; then 503 and its thread is free
@@ -66,22 +71,22 @@ Response error_response(int status, const std::string& message, const std::strin
 class Api {
  public:
   explicit Api(Limits limits = {});
-  ~Api();  ///< cancels the fit jobs and waits for them
+  ~Api();  ///< cancels the fit and design jobs and waits for them
   Api(const Api&) = delete;
   Api& operator=(const Api&) = delete;
 
   /// Routes one request; thread-safe, never throws (an unexpected exception is a 500).
   Response handle(const Request& request);
 
-  /// Asks every running fit job to stop (they finish within one budget check).
-  void cancel_fits();
+  /// Asks every running fit and design job to stop (they finish within one budget check).
+  void cancel_jobs();
   /// Stops for good: requests in flight and later ones end with 503 "stopping" at their next
-  /// interrupt check, and every fit job is cancelled. Returns at once.
+  /// interrupt check, and every job is cancelled. Returns at once.
   void stop();
 
   const Limits& limits() const noexcept;
 
-  struct State;  ///< the routes and the fit jobs (src/serve/api.cpp)
+  struct State;  ///< the routes and the jobs (src/serve/api.cpp)
 
  private:
   std::unique_ptr<State> state_;

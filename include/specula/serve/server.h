@@ -20,7 +20,7 @@ class Server {
   /// Serves requests until stop(); call after bind().
   void run();
   /// Stops listening, ends the connections (each within 50 ms), stops requests in flight at
-  /// their next interrupt check (503) and cancels the fit jobs; returns at once. Safe from any
+  /// their next interrupt check (503) and cancels the jobs; returns at once. Safe from any
   /// thread, also before run(). run() returns once every connection has ended.
   void stop();
   /// True while run() is accepting connections.
@@ -31,10 +31,10 @@ class Server {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Threads of fit jobs left running when their server was destroyed: a search that had checked
-/// neither its cancel flag nor its work limit Limits::stop_seconds after the stop. The CLI then
-/// exits at once rather than run static destructors under them.
-std::size_t abandoned_fit_threads() noexcept;
+/// Threads of fit and design jobs left running when their server was destroyed: a search that
+/// had checked neither its cancel flag nor its work limit Limits::stop_seconds after the stop.
+/// The CLI then exits at once rather than run static destructors under them.
+std::size_t abandoned_job_threads() noexcept;
 
 /// True for addresses only this machine can reach: localhost, 127.0.0.0/8, ::1.
 bool is_loopback(const std::string& host);

@@ -1,12 +1,7 @@
-#include "fit_jobs.h"
+#include "fit_job.h"
 
-#include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <set>
 
 #include "fields.h"
@@ -14,37 +9,28 @@
 #include "specula/fit/emit.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
-#include "specula/serve/server.h"
 
 namespace specula::serve {
-
-/// One search: its inputs, fixed at start, and what the search has reported so far.
-struct FitJobs::Job {
-  std::int64_t id = 0;
-  std::string target;
-  std::string source;  ///< where the data came from, for the emitted functions' comment
-  fit::Data data;
-  fit::Options options;
-  std::atomic<bool> cancel{false};
-  std::atomic<bool> finished{false};
-  std::chrono::steady_clock::time_point deadline;  ///< of its work limit: time budget + grace
-
-  mutable std::mutex mutex;  // guards what follows and signals `ended`
-  std::condition_variable ended;  ///< notified once `finished` is set
-  std::string state = "running";  ///< running | done | cancelled | failed
-  std::string error;
-  fit::Progress progress;
-  std::vector<fit::Candidate> front;
-  std::optional<std::size_t> chosen;
-  std::optional<fit::StopReason> stopped_by;
-};
 
 namespace {
 
 using Json = nlohmann::ordered_json;
-using Job = FitJobs::Job;
 
-std::atomic<std::size_t> abandoned{0};
+/// One search: its inputs, fixed at start, and what the search has reported so far.
+struct FitJob final : Job {
+  std::string target;
+  std::string source;  ///< where the data came from, for the emitted functions' comment
+  fit::Data data;
+  fit::Options options;
+  // Guarded by `mutex`:
+  fit::Progress progress;
+  std::vector<fit::Candidate> front;
+  std::optional<std::size_t> chosen;
+  std::optional<fit::StopReason> stopped_by;
+
+  std::string run() override;
+  void describe(Json& out) const override;
+};
 
 [[noreturn]] void fail(std::string_view field, const std::string& message) {
   throw InvalidField(std::string(field), message);
@@ -72,7 +58,7 @@ std::vector<double> column(const Fields& columns, const std::string& name, const
 }
 
 /// {"data": {"columns": {name: [numbers]}, "target": name, "vars": [names]}}
-void read_data(const Fields& f, Job& job, const Limits& limits) {
+void read_data(const Fields& f, FitJob& job, const Limits& limits) {
   const Fields d = f.object("data", {"columns", "target", "vars"});
   const auto& raw_columns = d.raw("columns");
   if (!raw_columns.is_object() || raw_columns.empty())
@@ -106,7 +92,7 @@ void read_data(const Fields& f, Job& job, const Limits& limits) {
 
 /// {"model": id, "params": {…}, "form": …, "n": range, "round": digits}: the model's exact
 /// coefficient k(n) (as `specula normalize` prints it) to fit as a function of n.
-void read_model(const Fields& f, Job& job, const Limits& limits) {
+void read_model(const Fields& f, FitJob& job, const Limits& limits) {
   const queries::ModelSpec spec = f.model(false);
   const auto ns = f.values_or("n", "paper50", limits.max_n);
   const std::int64_t digits = f.integer_or("round", -1, 0, 17);  // -1: not rounded
@@ -151,7 +137,7 @@ void read_options(const Fields& f, fit::Options& o, const Limits& limits) {
   o.threads = 1;  // a job never takes more than one core from the requests
 }
 
-Json candidate_json(const fit::Candidate& c, const Job& job) {
+Json candidate_json(const fit::Candidate& c, const FitJob& job) {
   const std::string origin = fmt::format("specula fit: {} from {}, size {}, train {} {:.6g}", job.target,
                                          job.source, c.size, fit::metric_name(job.options.metric), c.train_error);
   return Json{{"size", c.size},
@@ -163,178 +149,65 @@ Json candidate_json(const fit::Candidate& c, const Job& job) {
               {"glsl", fit::emit_function(c.formula, "glsl", job.target, origin)}};
 }
 
-std::string status_json(const Job& job) {
-  const std::lock_guard lock(job.mutex);
-  Json out{{"job", job.id}, {"state", job.state}, {"target", job.target},
-           {"variables", job.data.variables}, {"rows", job.data.target.size()},
-           {"elapsed_s", job.progress.elapsed_s}, {"time_left_s", job.progress.time_left_s},
-           {"evaluations", job.progress.evaluations}, {"generations", job.progress.generations},
-           {"snap", job.options.snap}, {"front", Json::array()}};
-  for (const auto& c : job.front) out["front"].push_back(candidate_json(c, job));
-  out["chosen"] = job.chosen ? Json(*job.chosen) : Json();
-  out["stopped_by"] = job.stopped_by ? Json(fit::to_string(*job.stopped_by)) : Json();
-  if (!job.error.empty()) out["error"] = job.error;
-  return out.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";  // an error may echo anything
+void FitJob::describe(Json& out) const {
+  out["target"] = target;
+  out["variables"] = data.variables;
+  out["rows"] = data.target.size();
+  out["elapsed_s"] = progress.elapsed_s;
+  out["time_left_s"] = progress.time_left_s;
+  out["evaluations"] = progress.evaluations;
+  out["generations"] = progress.generations;
+  out["snap"] = options.snap;
+  out["front"] = Json::array();
+  for (const auto& c : front) out["front"].push_back(candidate_json(c, *this));
+  out["chosen"] = chosen ? Json(*chosen) : Json();
+  out["stopped_by"] = stopped_by ? Json(fit::to_string(*stopped_by)) : Json();
 }
 
-void run_job(Job& job) {
+std::string FitJob::run() {
   try {
-    const fit::Result result = fit::search(job.data, job.options, [&job](const fit::Progress& p) {
-      const std::lock_guard lock(job.mutex);
-      job.progress = p;
-      job.progress.front = nullptr;
-      job.front = *p.front;
+    const fit::Result result = fit::search(data, options, [this](const fit::Progress& p) {
+      const std::lock_guard lock(mutex);
+      progress = p;
+      progress.front = nullptr;
+      front = *p.front;
     });
-    const std::lock_guard lock(job.mutex);
-    job.front = result.front;
-    job.chosen = result.chosen;
-    job.stopped_by = result.stopped_by;
-    job.progress.elapsed_s = result.seconds;
-    job.progress.evaluations = result.evaluations;
-    job.progress.generations = result.generations;
-    job.state = result.stopped_by == fit::StopReason::cancelled ? "cancelled" : "done";
-  } catch (const Interrupted& e) {  // a library check of the job's work limit (or a signal)
-    const std::lock_guard lock(job.mutex);
-    if (e.reason() == Interrupted::Reason::deadline) {
-      job.state = "failed";
-      job.error = fmt::format("the search ran past its time budget and was stopped");
-    } else {
-      job.state = "cancelled";
-      job.stopped_by = fit::StopReason::cancelled;
+    const std::lock_guard lock(mutex);
+    front = result.front;
+    chosen = result.chosen;
+    stopped_by = result.stopped_by;
+    progress.elapsed_s = result.seconds;
+    progress.evaluations = result.evaluations;
+    progress.generations = result.generations;
+    return result.stopped_by == fit::StopReason::cancelled ? "cancelled" : "done";
+  } catch (const Interrupted& e) {
+    if (e.reason() != Interrupted::Reason::deadline) {
+      const std::lock_guard lock(mutex);
+      stopped_by = fit::StopReason::cancelled;
     }
-  } catch (const std::exception& e) {
-    const std::lock_guard lock(job.mutex);
-    job.state = "failed";
-    job.error = e.what();
+    throw;
   }
-  const std::lock_guard lock(job.mutex);
-  job.finished = true;
-  job.ended.notify_all();
 }
 
 }  // namespace
 
-std::size_t abandoned_fit_threads() noexcept { return abandoned.load(); }
-
-FitJobs::~FitJobs() {
-  cancel_all();
-  const auto until = std::chrono::steady_clock::now() +
-                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                         std::chrono::duration<double>(limits_.stop_seconds));
-  const std::lock_guard lock(mutex_);
-  for (auto& w : workers_) {
-    bool ended = false;
-    {
-      std::unique_lock job_lock(w.job->mutex);
-      ended = w.job->ended.wait_until(job_lock, until, [&] { return w.job->finished.load(); });
-    }
-    if (ended) {
-      w.thread.join();
-    } else {  // the thread holds its own Job (shared): it may run on, touching nothing of ours
-      w.thread.detach();
-      ++abandoned;
-    }
-  }
-}
-
-std::int64_t FitJobs::start(std::string_view body) {
+std::shared_ptr<Job> fit_job(std::string_view body, const Limits& limits) {
   const Fields f(body, {"data", "model", "params", "form", "n", "round", "ops", "constants", "size_weights",
                         "metric", "choose", "max_size", "seed", "generations", "time", "population",
                         "islands", "enumerate_size", "test_fraction", "snap", "snap_tolerance"});
-  auto job = std::make_shared<Job>();
+  auto job = std::make_shared<FitJob>();
   if (f.has("data") == f.has("model")) fail("data", "give data (columns to fit) or model (to fit its normalization), one of them");
   if (f.has("data")) {
     for (const char* key : {"params", "form", "n", "round"})
       if (f.has(key)) fail(key, fmt::format("{} goes with model, not with data", key));
-    read_data(f, *job, limits_);
+    read_data(f, *job, limits);
   } else {
-    read_model(f, *job, limits_);
+    read_model(f, *job, limits);
   }
-  read_options(f, job->options, limits_);
+  read_options(f, job->options, limits);
   job->options.cancel = &job->cancel;
-  job->deadline = std::chrono::steady_clock::now() +
-                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                      std::chrono::duration<double>(job->options.time_limit_s + limits_.fit_grace_seconds));
-
-  const std::lock_guard lock(mutex_);
-  reap_finished();
-  if (running() >= limits_.max_running_fits) throw TooManyFits{running()};
-  // Cancelled jobs free their place at once, but their threads are not waited for: bound them
-  // too, so that start-and-cancel cannot pile up threads.
-  if (workers_.size() >= 2 * limits_.max_running_fits) throw TooManyFits{running(), workers_.size() - running()};
-  job->id = next_id_++;
-  jobs_[job->id] = job;
-  workers_.push_back({job, std::thread([job] {
-                        const ScopedLimit limit(WorkLimit{job->deadline, &job->cancel});
-                        run_job(*job);
-                      })});
-  forget_oldest_done();
-  return job->id;
-}
-
-std::optional<std::string> FitJobs::status(std::int64_t id) const {
-  std::shared_ptr<Job> job;
-  {
-    const std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
-    if (it == jobs_.end()) return std::nullopt;
-    job = it->second;
-  }
-  return status_json(*job);
-}
-
-std::optional<std::string> FitJobs::cancel(std::int64_t id) {
-  std::shared_ptr<Job> job;
-  {
-    const std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
-    if (it == jobs_.end()) return std::nullopt;
-    job = it->second;
-    jobs_.erase(it);
-  }
-  job->cancel = true;
-  {
-    const std::lock_guard lock(job->mutex);
-    if (job->state == "running") job->state = "cancelled";
-  }
-  return status_json(*job);
-}
-
-void FitJobs::cancel_all() {
-  const std::lock_guard lock(mutex_);
-  for (auto& w : workers_) w.job->cancel = true;
-}
-
-void FitJobs::reap_finished() {
-  std::erase_if(workers_, [](Worker& w) {
-    if (!w.job->finished) return false;
-    w.thread.join();
-    return true;
-  });
-}
-
-std::size_t FitJobs::running() const {
-  // A cancelled job frees its place at once, also while its thread is still winding down.
-  return static_cast<std::size_t>(std::count_if(workers_.begin(), workers_.end(),
-                                                [](const Worker& w) { return !w.job->finished && !w.job->cancel; }));
-}
-
-std::size_t FitJobs::running_count() const {
-  const std::lock_guard lock(mutex_);
-  return running();
-}
-
-void FitJobs::forget_oldest_done() {
-  std::size_t done = 0;
-  for (const auto& [id, job] : jobs_) done += job->finished ? 1 : 0;
-  for (auto it = jobs_.begin(); it != jobs_.end() && done > limits_.max_kept_fits;) {
-    if (it->second->finished) {
-      it = jobs_.erase(it);
-      --done;
-    } else {
-      ++it;
-    }
-  }
+  job->deadline = deadline_in(job->options.time_limit_s + limits.fit_grace_seconds);
+  return job;
 }
 
 }  // namespace specula::serve

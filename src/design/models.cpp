@@ -1,0 +1,43 @@
+// The target and the designed and reference lobes as models at a value of the range parameter,
+// and the spacing of the range: one place for what the pipeline, the checks, the files and the
+// page all evaluate.
+#include <cmath>
+#include <fmt/format.h>
+
+#include "specula/catalogue/catalogue.h"
+#include "specula/design/design.h"
+
+namespace specula::design {
+
+bool log_spaced(double lo, double hi) { return lo > 0 && hi / lo >= 4; }
+
+double middle(double lo, double hi) { return log_spaced(lo, hi) ? std::sqrt(lo * hi) : (lo + hi) / 2; }
+
+double timing_param(const Settings& s) {
+  if (s.lo <= 20 && 20 <= s.hi) return 20;
+  return middle(s.lo, s.hi);
+}
+
+Model target_at(const Settings& s, double p) {
+  ParamValues params = s.params;
+  params[s.param] = p;
+  Model m = make_model(s.target, params, s.form);
+  if (!m.is_lobe()) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
+  return m;
+}
+
+Form target_form(const Settings& s) { return s.form ? *s.form : target_at(s, s.lo).form(); }
+
+bool is_formula(const Lobe& l) { return !l.reference || l.id == "spherical-gaussian"; }
+
+std::function<Model(double)> lobe_at(const Lobe& l, const Settings& s) {
+  const auto info = model_definition(is_formula(l) ? "lobe: " + l.formula : l.id, {{s.param, s.lo}});
+  const bool reads_param = info->find_param(s.param) != nullptr;  // F = c does not
+  return [info, reads_param, param = s.param, form = target_form(s)](double p) {
+    ParamValues params;
+    if (reads_param) params[param] = p;
+    return make_model(info, params, form);
+  };
+}
+
+}  // namespace specula::design

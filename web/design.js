@@ -1,0 +1,73 @@
+// The designer panel: POST /api/design for cheap lobes against a target over a range of its
+// parameter, poll GET /api/design/{id} while the front grows (finished lobes first on the cost
+// model's axis, then timed and checked), DELETE to cancel; "Add" puts a member on the page as a
+// model card (its definition object, normalized by quadrature).
+import {api, del, pollJob} from './api.js';
+
+const cell = (text) => Object.assign(document.createElement('td'), {textContent: text});
+const number = (x, digits = 4) => (x === null || x === undefined ? '-' : Number(x).toPrecision(digits));
+
+export function setupDesign(lobeModels, addModel) {
+  const $ = (id) => document.getElementById(id);
+  const status = $('design-status'), body = document.querySelector('#design-front tbody');
+  $('design-target').replaceChildren(...lobeModels.map((m) => new Option(m.id, m.id, m.id === 'phong', m.id === 'phong')));
+  let job = null, stopPolling = () => {};
+
+  const memberRow = (l) => {
+    const row = document.createElement('tr');
+    row.className = l.kind;
+    for (const text of [l.id, number(l.max_abs_error), number(l.ns_per_eval, 3), l.ops ?? l.model_cost ?? '-',
+                        l.kind === 'reference' ? '-' : (l.check || '…'), l.display])
+      row.append(cell(text));
+    const actions = document.createElement('td');
+    if (l.definition) {
+      const add = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Add'});
+      add.setAttribute('aria-label', `Add ${l.id} to the page's models`);
+      add.addEventListener('click', () => addModel(l.definition_normalized));
+      actions.append(add);
+    }
+    row.append(actions);
+    return row;
+  };
+
+  const show = (s) => {
+    status.className = s.state === 'failed' ? 'error' : '';
+    status.textContent = `job ${s.job}: ${s.state} · ${s.phase} ${s.done}/${s.total} · ${s.forms_screened} shapes screened` +
+      ` · ${s.elapsed_s.toFixed(1)} s` + (s.final ? '' : ' · front so far on the cost model') + (s.error ? ` · ${s.error}` : '');
+    body.replaceChildren(...s.front.map(memberRow), ...s.references.map(memberRow));
+  };
+
+  const finish = (error) => {
+    stopPolling();
+    $('design-start').disabled = false;
+    $('design-cancel').disabled = true;
+    if (error) status.textContent = error.message;
+  };
+
+  $('design-form').addEventListener('submit', async (event) => {
+    event.preventDefault();
+    try {
+      const request = {target: $('design-target').value, param: $('design-param').value.trim(),
+                       range: [Number($('design-lo').value), Number($('design-hi').value)], ops: $('design-ops').value.trim(),
+                       max_cost: Number($('design-cost').value), time: Number($('design-time').value),
+                       timing: $('design-timing').checked};
+      job = (await api('/api/design', request)).job;
+      $('design-start').disabled = true;
+      $('design-cancel').disabled = false;
+      body.replaceChildren();
+      status.className = '';
+      status.textContent = `job ${job} started`;
+      stopPolling = pollJob(`/api/design/${job}`, 500, show, finish);
+    } catch (e) {
+      status.textContent = e.message;
+      status.className = 'error';
+    }
+  });
+
+  $('design-cancel').addEventListener('click', async () => {
+    if (job === null) return;
+    const s = await del(`/api/design/${job}`);
+    if (s.front) show(s);
+    finish();
+  });
+}
