@@ -3,8 +3,9 @@
 
 A module is a directory: include/specula/<module>/ (its public headers) together with
 src/<module>/ (its sources and private headers). A header directly in include/specula/ is a
-module of its own named after its stem (include/specula/exceptions.h is module `exceptions`), and
-apps/<name>/ is module `apps/<name>` (apps/specula is the CLI).
+module of its own named after its stem (include/specula/exceptions.h is module `exceptions`),
+apps/<name>/ is module `apps/<name>` (apps/specula is the CLI), and python/ is module `python`
+(the binding of `import specula`).
 
 cmake/modules.txt declares, one line per module, what it may include:
 
@@ -12,7 +13,7 @@ cmake/modules.txt declares, one line per module, what it may include:
 
 A module may include the modules on its line and, through them, every module they may include:
 the modules declared below it. This script reads every #include of every .h, .cpp and .inl under
-include/specula/, src/ and apps/, resolves it to a module (a quoted include first against the
+include/specula/, src/, apps/ and python/, resolves it to a module (a quoted include first against the
 including file's directory, then against include/ and the tree's root; an include that names no
 file of the tree is a library's and is skipped), and fails, one line per violation, on
 
@@ -34,7 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 TABLE = Path("cmake/modules.txt")
-SCANNED_DIRS = ("include/specula", "src", "apps")
+SCANNED_DIRS = ("include/specula", "src", "apps", "python")
 SOURCE_SUFFIXES = {".h", ".cpp", ".inl"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
@@ -101,6 +102,8 @@ def module_of(root, file):
         return parts[1]
     if parts[0] == "apps" and len(parts) > 2:
         return f"apps/{parts[1]}"
+    if parts[0] == "python" and len(parts) > 1:
+        return "python"
     return None
 
 

@@ -370,7 +370,8 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   // 1. The first max_forms shapes (all shards' together), this shard's share, screened on a few
   // parameter values.
   const auto limit = static_cast<std::size_t>(s.max_forms.value_or(Ranges::forms));
-  const std::vector<Shape> all = enumerate_shapes(s.operations, s.max_cost, limit);
+  const std::vector<Shape> all =
+      enumerate_shapes(s.operations, s.max_cost, limit, [&] { return stopper.cancelled() || stopper.out_of_time(); });
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);

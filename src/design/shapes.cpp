@@ -125,7 +125,8 @@ expr::Expression with_constants(const Shape& shape, std::span<const double> valu
   return expr::Expression(std::move(nodes), {"c"});
 }
 
-std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit) {
+std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit,
+                                    const std::function<bool()>& stop) {
   const auto allowed = [&](Operation o) { return std::ranges::find(operations, o) != operations.end(); };
   // at_most[cost][k]: the indices into `all` of the shapes of that cost with at most k free
   // constants, in the order found. A binary step pairs x only with the y whose constants fit, so
@@ -134,7 +135,11 @@ std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int m
   std::vector<ByConstants> at_most(static_cast<std::size_t>(std::max(max_cost, 0)) + 1);
   std::vector<Shape> all;
   std::unordered_set<std::string> seen;
-  const auto full = [&] { return all.size() >= limit; };
+  bool stopped = false;
+  const auto full = [&] {
+    if (!stopped && stop && all.size() % 1024 == 1023) stopped = stop();
+    return stopped || all.size() >= limit;
+  };
   const auto add = [&](Shape s) {
     if (full() || s.constants > kMaxShapeConstants || s.cost > max_cost || !seen.insert(s.key).second) return;
     for (int k = s.constants; k <= kMaxShapeConstants; ++k)

@@ -4,6 +4,7 @@
 // uniforms, not charged per evaluation). Shapes are enumerated exhaustively in order of a cost
 // model, cheapest first, one shape per canonical text.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,8 +31,10 @@ struct Shape {
 inline constexpr int kMaxShapeConstants = 4;
 
 /// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma),
-/// cheapest first, then in a fixed order; at most `limit` shapes. Deterministic.
-std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit);
+/// cheapest first, then in a fixed order; at most `limit` shapes, fewer when `stop` (asked every
+/// 1024 shapes) says so. Deterministic but for the stop.
+std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit,
+                                    const std::function<bool()>& stop = {});
 
 /// The expression `shape` with its free constants set to `values` (in node order).
 expr::Expression with_constants(const Shape& shape, std::span<const double> values);

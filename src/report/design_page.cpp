@@ -44,6 +44,16 @@ std::string member_glsl(const design::Result& r, const design::Lobe& l) {
 
 }  // namespace
 
+namespace {
+
+// The front chart, or what stands for it when no lobe was finished.
+std::string front_figure(const design::Result& r) {
+  if (r.front.empty()) return "<p>No lobe was finished: nothing to draw (a longer <code>--time</code> screens shapes).</p>";
+  return to_svg(design_front_chart(r));
+}
+
+}  // namespace
+
 Chart design_front_chart(const design::Result& r) {
   const bool measured = timed(r);
   Chart chart;
@@ -136,7 +146,7 @@ design.json, front.svg, front.png. Load the lobes in any command with <code>--mo
 )",
                      xml_escape(s.target), kStyle, xml_escape(s.target), xml_escape(s.param), s.lo, s.hi,
                      to_string(s.objective), r.forms_screened, r.forms_total, r.seconds,
-                     r.cancelled ? " (stopped early)" : "", xml_escape(r.cost_note), to_svg(design_front_chart(r)),
+                     r.cancelled ? " (stopped early)" : "", xml_escape(r.cost_note), front_figure(r),
                      html_table({"id", "kind", "max |F − target|", "max rel.", "ns/value", "ops", "SPIR-V", "check",
                                  "formula"},
                                 rows, "models"),
@@ -144,8 +154,10 @@ design.json, front.svg, front.png. Load the lobes in any command with <code>--mo
 }
 
 void write_design_pictures(const design::Result& r, const std::filesystem::path& dir) {
-  io::write_file_atomically(dir / "front.svg", to_svg(design_front_chart(r)));
-  render::write_png(dir / "front.png", to_image(design_front_chart(r)), {{"Software", "specula design"}});
+  if (!r.front.empty()) {  // no lobe finished (a --time spent before any): no front to draw
+    io::write_file_atomically(dir / "front.svg", to_svg(design_front_chart(r)));
+    render::write_png(dir / "front.png", to_image(design_front_chart(r)), {{"Software", "specula design"}});
+  }
   io::write_file_atomically(dir / "index.html", design_page(r));
 }
 

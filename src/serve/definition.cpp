@@ -118,7 +118,7 @@ std::string missing_key(std::string_view message) {
     const auto at = message.find(says);
     if (at == std::string_view::npos) continue;
     const auto key = message.substr(at + says.size());
-    return "." + std::string(key.substr(0, key.find('\'')));
+    return fmt::format(".{}", key.substr(0, key.find('\'')));  // not "." + string: GCC 12's -Wrestrict misfires on it
   }
   return "";
 }

@@ -63,7 +63,8 @@ TEST(ServeDesign, AJobShipsMembersThatLoadAsModels) {
     const json model = member["definition_normalized"];
     const Answer eval = post_json(server.port(), "/api/eval", {{"model", model}, {"params", {{"n", 20}}}, {"cos", {1, 0.9}}});
     ASSERT_EQ(eval.status, 200) << eval.body;
-    for (const auto& row : eval.json()["rows"]) EXPECT_TRUE(std::isfinite(row["value"].get<double>())) << eval.body;
+    const json rows = eval.json()["rows"];  // a copy: the range of a temporary's member would dangle
+    for (const auto& row : rows) EXPECT_TRUE(std::isfinite(row["value"].get<double>())) << eval.body;
     const Answer albedo = post_json(server.port(), "/api/albedo", {{"model", model}, {"params", {{"n", 20}}}, {"theta", {0}}});
     ASSERT_EQ(albedo.status, 200) << albedo.body;
     if (member["check"] != "pass") continue;
