@@ -19,10 +19,8 @@ namespace {
 // two evaluations; Ctrl-C stops any of them.
 constexpr std::size_t kMaxCases = 1000, kMaxGrazing = 100;
 constexpr int kMaxPairs = 10'000'000;
-// --sampling: at most 20 angles and 3e7 samples over all of them (log-normalized, the slowest
-// built-in sampler, drew and binned 5e7 in 106 s on a 2-core machine at load average 7).
-constexpr std::size_t kMaxSamplingAngles = 20;
-constexpr std::size_t kMaxSamplingTotal = 30'000'000;
+// --sampling: sampling/check.h's caps.
+using sampling::kMaxSamplingAngles, sampling::kMaxSamplingTotal;
 
 struct CheckCliOptions {
   ModelOptions model;

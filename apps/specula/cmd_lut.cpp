@@ -13,10 +13,8 @@
 namespace specula::cli {
 namespace {
 
-// The documented caps (docs/robustness.md, measured): 65536 cells of Cook-Torrance, the costliest
-// built-in albedo, take about a minute on two idle cores; an E_avg costs 100-400 cells, so at most
-// 256 of them. Ctrl-C stops any table.
-constexpr std::size_t kMaxAxisValues = 1024, kMaxCells = 65'536, kMaxAverages = 256;
+// The documented caps (analysis/energy.h); Ctrl-C stops any table.
+using analysis::kMaxLutAxisValues, analysis::kMaxLutCells, analysis::kMaxLutAverages;
 constexpr std::size_t kProgressFrom = 256;  // cells: smaller tables finish before progress matters
 
 struct LutOptions {
@@ -53,7 +51,7 @@ Sweep sweep_of(const LutOptions& o) {
   const auto eq = o.sweep.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=LIST", o.sweep));
-  Sweep s{o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1), kMaxAxisValues)};
+  Sweep s{o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1), kMaxLutAxisValues)};
   if (o.model.param_values().contains(s.name))
     throw InvalidArgument(fmt::format("--sweep {} is also given as --param {}", s.name, s.name));
   require_increasing("--sweep", s.values);
@@ -150,16 +148,16 @@ void run(const LutOptions& o) {
   if ((o.format == "exr" || o.format == "png16") && o.out.empty())
     throw InvalidArgument(fmt::format("--format {} needs --out FILE", o.format));
   const Sweep sweep = sweep_of(o);
-  const std::vector<double> mu = option_values("--mu", o.mu, kMaxAxisValues);
+  const std::vector<double> mu = option_values("--mu", o.mu, kMaxLutAxisValues);
   require_increasing("--mu", mu);
   for (const double m : mu)
     if (!(m >= analysis::kMinMu && m <= 1))
       throw InvalidArgument(fmt::format("--mu: {} is outside [{:g}, 1]", m, analysis::kMinMu));
-  if (sweep.values.size() * mu.size() > kMaxCells)
-    throw InvalidArgument(fmt::format("{} x {} cells is more than {}", sweep.values.size(), mu.size(), kMaxCells));
-  if (o.average && sweep.values.size() > kMaxAverages)
+  if (sweep.values.size() * mu.size() > kMaxLutCells)
+    throw InvalidArgument(fmt::format("{} x {} cells is more than {}", sweep.values.size(), mu.size(), kMaxLutCells));
+  if (o.average && sweep.values.size() > kMaxLutAverages)
     throw InvalidArgument(fmt::format("--average: {} values of {} is more than {} (each E_avg costs 100-400 cells)",
-                                      sweep.values.size(), sweep.name, kMaxAverages));
+                                      sweep.values.size(), sweep.name, kMaxLutAverages));
   const bool code = o.format == "cpp" || o.format == "glsl";
   if (code) require_even_spacing("--mu", mu, o.format), require_even_spacing("--sweep", sweep.values, o.format);
   const analysis::ModelAt at = model_at(o, sweep);

@@ -12,15 +12,24 @@
 
 namespace specula::python {
 
-namespace {
-
-using queries::Spelling;
+py::array real_array(const py::handle& x, std::string_view name) {
+  const py::array a = py::isinstance<py::array>(x) ? py::reinterpret_borrow<py::array>(x)
+                                                   : py::module_::import("numpy").attr("asarray")(x).cast<py::array>();
+  const char kind = a.dtype().kind();
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f')
+    throw py::type_error(fmt::format("{} must be real numbers, got an array of {}", name, std::string(py::str(a.dtype()))));
+  return a;
+}
 
 std::vector<double> values_of(const py::object& x, const char* name) {
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x);
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(real_array(x, name));
   if (!a) throw py::type_error(fmt::format("{} must be a number or an array of numbers", name));
   return {a.data(), a.data() + a.size()};
 }
+
+namespace {
+
+using queries::Spelling;
 
 py::array_t<double> column(const io::Table& table, std::string_view name) {
   const auto at = std::find(table.columns.begin(), table.columns.end(), name);

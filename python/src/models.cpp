@@ -89,46 +89,40 @@ py::array lobe_batch(const Model& model, simd::Tier tier, const py::handle& inpu
 py::array lobe_values(const PyModel& m, const py::object& c, const std::string& tier, const py::object& out) {
   if (!m.model.is_lobe())
     throw InvalidField("c", fmt::format("'{}' is a full BRDF, not a lobe model: evaluate it at directions, m(l, v)", m.id));
-  if (py::isinstance<py::array_t<float>>(c)) return lobe_batch<float>(m.model, tier_named(tier), c, out);
-  return lobe_batch<double>(m.model, tier_named(tier), c, out);
+  const py::array values = real_array(c, "c");
+  if (py::isinstance<py::array_t<float>>(values)) return lobe_batch<float>(m.model, tier_named(tier), values, out);
+  return lobe_batch<double>(m.model, tier_named(tier), values, out);
 }
 
 using Directions = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-/// f(N, L, V) for rows of (count, 3) arrays (the Python side broadcasts and flattens).
+/// f(N, L, V) for rows of (count, 3) arrays (the Python side broadcasts and flattens), written
+/// into `out_arg` (a C-contiguous float64 array of count values) or a new array, through the
+/// batch path over rows (no copy of the input).
 py::array_t<double> direction_values(const PyModel& m, const Directions& l, const Directions& v,
-                                     const std::optional<Directions>& n, const std::string& tier_name) {
+                                     const std::optional<Directions>& n, const std::string& tier_name,
+                                     const py::object& out_arg) {
   const auto rows = [](const Directions& a, const char* name) {
     if (a.ndim() != 2 || a.shape(1) != 3)
       throw InvalidField(name, fmt::format("{} must be an array of 3-vectors, shape (..., 3)", name));
-    return static_cast<std::size_t>(a.shape(0));
+    return std::span<const double>(a.data(), static_cast<std::size_t>(a.size()));
   };
-  const std::size_t count = rows(l, "l");
-  if (rows(v, "v") != count || (n && rows(*n, "n") != count))
+  const simd::DirectionRows directions{n ? rows(*n, "n") : std::span<const double>{}, rows(l, "l"), rows(v, "v")};
+  if (directions.v.size() != directions.l.size() || (n && directions.n.size() != directions.l.size()))
     throw InvalidField("v", "l, v and n must hold as many directions");
   const simd::Tier tier = tier_named(tier_name);
-  py::array_t<double> out(static_cast<py::ssize_t>(count));
-  std::vector<double> soa(9 * count);
-  const auto column = [&](std::size_t k) { return std::span<double>(soa.data() + k * count, count); };
+  const std::size_t count = directions.size();
+  if (!out_arg.is_none() && !py::isinstance<py::array_t<double>>(out_arg)) throw py::type_error("out must be a float64 array");
+  py::array_t<double> out = out_arg.is_none() ? py::array_t<double>(static_cast<py::ssize_t>(count))
+                                              : py::reinterpret_borrow<py::array_t<double>>(out_arg);
+  if (out.size() != static_cast<py::ssize_t>(count) || !out.writeable() || !(out.flags() & py::array::c_style))
+    throw InvalidField("out", "out must be a writable C-contiguous array of the directions' shape");
   {
     const py::gil_scoped_release release;
-    const double* ld = l.data();
-    const double* vd = v.data();
-    const double* nd = n ? n->data() : nullptr;
-    for (std::size_t i = 0; i < count; ++i)
-      for (std::size_t k = 0; k < 3; ++k) {
-        column(k)[i] = nd ? nd[3 * i + k] : (k == 2 ? 1.0 : 0.0);
-        column(3 + k)[i] = ld[3 * i + k];
-        column(6 + k)[i] = vd[3 * i + k];
-      }
-    const simd::DirectionBatch dirs{column(0), column(1), column(2), column(3), column(4),
-                                    column(5), column(6), column(7), column(8)};
-    simd::eval_batch(m.model, tier, dirs, std::span<double>(out.mutable_data(), count));
+    simd::eval_batch(m.model, tier, directions, std::span<double>(out.mutable_data(), count));
   }
   return out;
 }
-
-std::string python_repr(const std::string& text) { return py::repr(py::str(text)); }
 
 std::string repr(const PyModel& m) {
   std::string out = fmt::format("specula.model({}", python_repr(m.id));
@@ -159,9 +153,27 @@ ParamValues params_of(const py::kwargs& kwargs) {
 
 }  // namespace
 
+std::string python_repr(const std::string& text) { return py::repr(py::str(text)); }
+
+std::shared_mutex& catalogue_mutex() {
+  static std::shared_mutex mutex;
+  return mutex;
+}
+
+namespace {
+
+/// The catalogue's lock for a change, waited for with the GIL released (a long call's worker
+/// holds it shared and needs no GIL; its caller needs the GIL to return).
+std::unique_lock<std::shared_mutex> changing_catalogue() {
+  const py::gil_scoped_release release;
+  return std::unique_lock(catalogue_mutex());
+}
+
+}  // namespace
+
 PyModel make_py_model(const std::string& id, const ParamValues& params, std::optional<std::string> form,
                       std::optional<double> coef) {
-  PyModel m{id, std::nullopt, coef, params, make_model(id, params)};
+  PyModel m{id, std::nullopt, coef, params, make_model(id, params), {}};
   if (form) {
     m.form = queries::form_named(*form, Spelling::key);
     m.model = make_model(id, params, m.form);
@@ -177,7 +189,7 @@ const PyModel& model_argument(const py::object& argument, std::optional<PyModel>
                                    std::string(py::str(py::type::of(argument)))));
 }
 
-void bind_models(py::module_& m) {
+py::class_<PyModel> bind_models(py::module_& m) {
   m.def(
       "models", [] {
         py::list out;
@@ -196,6 +208,7 @@ void bind_models(py::module_& m) {
         std::vector<ModelInfo> infos = text ? parse_model_file(path_or_text, "<text>") : load_model_file(path_or_text);
         py::list ids;
         for (const auto& info : infos) ids.append(info.id);
+        const std::unique_lock changing = changing_catalogue();
         register_models(std::move(infos));
         return ids;
       },
@@ -206,10 +219,20 @@ void bind_models(py::module_& m) {
       "...                     'normalization = \"quadrature\"\\n[model.params.n]\\ndefault = 20\\nmin = 1\\nmax = 1000\\n')\n"
       "['mine']");
 
-  py::class_<PyModel>(m, "Model",
+  m.def(
+      "clear_models",
+      [] {
+        const std::unique_lock changing = changing_catalogue();
+        clear_registered_models();
+      },
+      "Forgets every model load_models() loaded (the built-in models stay); Model objects already\n"
+      "made keep working.\n\n"
+      ">>> specula.clear_models()\n>>> [m['origin'] for m in specula.models()][-1]\n'built-in'");
+
+  py::class_<PyModel> model_class(m, "Model",
                       "A model with its parameter values bound: a lobe model k·F(c) or a full BRDF. Made by\n"
-                      "specula.model(); evaluates over NumPy arrays through the SIMD batch path.")
-      .def_property_readonly("id", [](const PyModel& p) { return p.id; })
+                      "specula.model(); evaluates over NumPy arrays through the SIMD batch path.");
+  model_class.def_property_readonly("id", [](const PyModel& p) { return p.id; })
       .def_property_readonly("kind", [](const PyModel& p) { return std::string(to_string(p.model.info().kind)); })
       .def_property_readonly("is_lobe", [](const PyModel& p) { return p.model.is_lobe(); })
       .def_property_readonly("form", [](const PyModel& p) -> py::object {
@@ -230,7 +253,7 @@ void bind_models(py::module_& m) {
            "tier: 'exact' (a few ulp) or 'fast' (1e-4 relative where F >= 1e-3), as specula bench.\n"
            "out: an array of c's shape and type to write into (else a new one).\n\n"
            ">>> specula.model('phong', n=2).lobe([1.0, 0.5])\narray([1.  , 0.25])")
-      .def("_directions", &direction_values, py::arg("l"), py::arg("v"), py::arg("n"), py::arg("tier"))
+      .def("_directions", &direction_values, py::arg("l"), py::arg("v"), py::arg("n"), py::arg("tier"), py::arg("out"))
       .def("__repr__", &repr)
       .def(py::pickle(&pickled, [](const py::tuple& t) {
         if (t.size() != 4) throw std::runtime_error("a pickled specula.Model has four fields");
@@ -250,6 +273,7 @@ void bind_models(py::module_& m) {
       "'lobe: FORMULA' / 'brdf: FORMULA' — with its parameters as keywords (others at their\n"
       "defaults), a form ('rv' or 'nh', lobes) and a coefficient k overriding its own.\n\n"
       ">>> specula.model('log-normalized', n=20).coef\n4.192756116851179");
+  return model_class;
 }
 
 }  // namespace specula::python

@@ -15,6 +15,9 @@ PYBIND11_MODULE(_specula, m) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
-  specula::python::bind_models(m);
+  auto model_class = specula::python::bind_models(m);
   specula::python::bind_analysis(m);
+  specula::python::bind_sampling(m, model_class);
+  specula::python::bind_pictures(m);
+  specula::python::bind_search(m);
 }

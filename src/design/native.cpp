@@ -230,8 +230,12 @@ NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::fi
   const NativeSource source = native_source(lobes);
   const auto cpp = work_dir / "lobes.cpp", so = work_dir / "lobes.so", log = work_dir / "compile.log";
   std::ofstream(cpp) << source.text;
-  const int status = run_process({compiler, "-std=gnu++20", "-O2", "-march=native", "-fPIC", "-shared", "-o",
-                                  so.string(), cpp.string()},
+  // The kernels use Highway's static target only (no dynamic dispatch: they run where they are
+  // built). HWY_COMPILE_ONLY_STATIC says so to Highway, whose target detection otherwise stops
+  // with an #error when -march=native enables a target it leaves out of the dynamic set (Debian
+  // 12's Highway 1.0.3 on AVX-512 CPUs with VBMI2/VNNI/BITALG, e.g. AMD Zen 4).
+  const int status = run_process({compiler, "-std=gnu++20", "-O2", "-march=native", "-DHWY_COMPILE_ONLY_STATIC=1",
+                                  "-fPIC", "-shared", "-o", so.string(), cpp.string()},
                                  log, stop, kCompileLimit);
   if (status != 0) throw std::runtime_error(fmt::format("compiling the kernels failed: {}", first_error(log)));
   library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -229,9 +229,12 @@ std::string encode_exr(const Image& image, ExrPixel pixel, const Metadata& metad
     frame.insert(names[c], Imf::Slice(type, base + c * sample_size, x_stride, y_stride));
   }
   Imf::StdOSStream stream;
-  Imf::OutputFile file(stream, header);
-  file.setFrameBuffer(frame);
-  file.writePixels(image.height());
+  {
+    // The line offset table is written when the file closes: the bytes are whole only after it.
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height());
+  }
   return stream.str();
 }
 

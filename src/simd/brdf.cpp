@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <variant>
+#include <vector>
 
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
@@ -57,6 +58,19 @@ HWY_INLINE Geometry Load(const DirectionBatch& b, std::size_t i) {
   Geometry g{{hn::LoadU(d, &b.nx[i]), hn::LoadU(d, &b.ny[i]), hn::LoadU(d, &b.nz[i])},
              {hn::LoadU(d, &b.lx[i]), hn::LoadU(d, &b.ly[i]), hn::LoadU(d, &b.lz[i])},
              {hn::LoadU(d, &b.vx[i]), hn::LoadU(d, &b.vy[i]), hn::LoadU(d, &b.vz[i])}, {}, {}, {}};
+  g.nl = Dot(g.n, g.l);
+  g.nv = Dot(g.n, g.v);
+  g.above = hn::And(hn::Gt(g.nl, hn::Zero(d)), hn::Gt(g.nv, hn::Zero(d)));
+  return g;
+}
+
+/// Directions read straight from rows (x, y, z); no n: N = +z.
+HWY_INLINE Geometry LoadRows(const DirectionRows& r, std::size_t i) {
+  const DD d;
+  Geometry g{{hn::Zero(d), hn::Zero(d), hn::Set(d, 1.0)}, {}, {}, {}, {}, {}};
+  if (!r.n.empty()) hn::LoadInterleaved3(d, r.n.data() + 3 * i, g.n.x, g.n.y, g.n.z);
+  hn::LoadInterleaved3(d, r.l.data() + 3 * i, g.l.x, g.l.y, g.l.z);
+  hn::LoadInterleaved3(d, r.v.data() + 3 * i, g.v.x, g.v.y, g.v.z);
   g.nl = Dot(g.n, g.l);
   g.nv = Dot(g.n, g.v);
   g.above = hn::And(hn::Gt(g.nl, hn::Zero(d)), hn::Gt(g.nv, hn::Zero(d)));
@@ -234,6 +248,51 @@ void FullBrdfBatch(const DirectionBatch& b, const ModelDesc& m, bool fast, std::
   ForEachVector(b, count, out, [&](const Geometry& g) { return hn::IfThenElseZero(g.above, FullBrdf(g, m, fast)); });
 }
 
+/// ForEachVector over rows: the tail through one vector of rows padded with +z.
+template <class PerVector>
+void ForEachRowVector(const DirectionRows& r, std::size_t count, double* out, const PerVector& per_vector) {
+  const DD d;
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t i = 0;
+  for (; i + lanes <= count; i += lanes) hn::StoreU(per_vector(LoadRows(r, i)), d, out + i);
+  if (i == count) return;
+  std::array<std::array<double, 3 * hn::MaxLanes(DD())>, 3> pad{};
+  const std::span<const double> sources[3] = {r.n, r.l, r.v};
+  for (std::size_t k = 0; k < 3; ++k)
+    for (std::size_t j = 0; j < lanes; ++j)
+      for (std::size_t c = 0; c < 3; ++c)
+        pad[k][3 * j + c] = !sources[k].empty() && i + j < count ? sources[k][3 * (i + j) + c] : (c == 2 ? 1.0 : 0.0);
+  const auto padded = [&](std::size_t k) { return std::span<const double>(pad[k].data(), 3 * lanes); };
+  const DirectionRows tail{r.n.empty() ? std::span<const double>() : padded(0), padded(1), padded(2)};
+  HWY_ALIGN double last[hn::MaxLanes(DD())];
+  hn::Store(per_vector(LoadRows(tail, 0)), d, last);
+  std::copy_n(last, count - i, out + i);
+}
+
+void FormCosinesRows(const DirectionRows& r, bool rv, std::size_t count, double* out) {
+  ForEachRowVector(r, count, out, [&](const Geometry& g) { return FormCosine(g, rv); });
+}
+
+void FullBrdfRows(const DirectionRows& r, const ModelDesc& m, bool fast, std::size_t count, double* out) {
+  ForEachRowVector(r, count, out, [&](const Geometry& g) { return hn::IfThenElseZero(g.above, FullBrdf(g, m, fast)); });
+}
+
+/// Rows (x, y, z) of `rows` into the columns x, y and z.
+void RowsToColumns(const double* HWY_RESTRICT rows, std::size_t count, double* HWY_RESTRICT x, double* HWY_RESTRICT y,
+                   double* HWY_RESTRICT z) {
+  const DD d;
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t i = 0;
+  for (; i + lanes <= count; i += lanes) {
+    VD a, b, c;
+    hn::LoadInterleaved3(d, rows + 3 * i, a, b, c);
+    hn::StoreU(a, d, x + i);
+    hn::StoreU(b, d, y + i);
+    hn::StoreU(c, d, z + i);
+  }
+  for (; i < count; ++i) x[i] = rows[3 * i], y[i] = rows[3 * i + 1], z[i] = rows[3 * i + 2];
+}
+
 }  // namespace specula::simd::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -242,6 +301,9 @@ namespace specula::simd {
 
 HWY_EXPORT(FormCosines);
 HWY_EXPORT(FullBrdfBatch);
+HWY_EXPORT(RowsToColumns);
+HWY_EXPORT(FormCosinesRows);
+HWY_EXPORT(FullBrdfRows);
 
 namespace {
 
@@ -280,19 +342,27 @@ ModelDesc describe(const FullBrdf& brdf) {
 
 constexpr std::size_t kChunk = 512;
 
-/// k·F(c) in chunks: the form's cosines, then the lobe kernels, then the factor k.
-void lobe_model_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::size_t count, double* out) {
+/// k·F(c) in chunks: the form's cosines (cosines(first, n, c) writes those of directions first…
+/// first + n − 1), then the lobe kernels, then the factor k.
+template <class Cosines>
+void lobe_model_batch(const Model& model, Tier tier, std::size_t count, double* out, const Cosines& cosines) {
   const LobeSpec lobe = spec_of(model.lobe());
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t n = std::min(kChunk, count - first);
-    auto part = [&](std::span<const double> s) { return s.subspan(first, n); };
-    const DirectionBatch sub{part(dirs.nx), part(dirs.ny), part(dirs.nz), part(dirs.lx), part(dirs.ly),
-                             part(dirs.lz), part(dirs.vx), part(dirs.vy), part(dirs.vz)};
     std::array<double, kChunk> c;
-    HWY_DYNAMIC_DISPATCH(FormCosines)(sub, model.form() == Form::rv, n, c.data());
+    cosines(first, n, c.data());
     eval_batch(lobe, tier, std::span<const double>(c.data(), n), std::span<double>(out + first, n));
     for (std::size_t i = 0; i < n; ++i) out[first + i] *= model.coef();
   }
+}
+
+void lobe_model_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::size_t count, double* out) {
+  lobe_model_batch(model, tier, count, out, [&](std::size_t first, std::size_t n, double* c) {
+    auto part = [&](std::span<const double> s) { return s.subspan(first, n); };
+    const DirectionBatch sub{part(dirs.nx), part(dirs.ny), part(dirs.nz), part(dirs.lx), part(dirs.ly),
+                             part(dirs.lz), part(dirs.vx), part(dirs.vy), part(dirs.vz)};
+    HWY_DYNAMIC_DISPATCH(FormCosines)(sub, model.form() == Form::rv, n, c);
+  });
 }
 
 /// A formula BRDF in chunks: the dot products (as FormulaBrdf::operator() computes them), then
@@ -341,6 +411,43 @@ void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::
   if (const auto* formula = std::get_if<FormulaBrdf>(&model.brdf()))
     return formula_brdf_batch(*formula, dirs, count, out.data());
   HWY_DYNAMIC_DISPATCH(FullBrdfBatch)(dirs, describe(model.brdf()), tier == Tier::fast, count, out.data());
+}
+
+namespace {
+
+/// The models without a fused row path (M+ms, formula BRDFs): the rows become columns a chunk at
+/// a time, each chunk evaluated as columns.
+void rows_through_columns(const Model& model, Tier tier, const DirectionRows& rows, std::size_t count, double* out) {
+  constexpr std::size_t kRowsChunk = 1024;  // 9 columns of 8 KiB: L1 and L2 hold them
+  std::vector<double> columns(9 * kRowsChunk);
+  const auto column = [&](std::size_t k) { return columns.data() + k * kRowsChunk; };
+  if (rows.n.empty()) std::fill_n(column(2), kRowsChunk, 1.0);  // N = +z: set once
+  for (std::size_t first = 0; first < count; first += kRowsChunk) {
+    const std::size_t n = std::min(kRowsChunk, count - first);
+    for (std::size_t k = rows.n.empty() ? 1 : 0; k < 3; ++k) {
+      const std::span<const double> source = k == 0 ? rows.n : (k == 1 ? rows.l : rows.v);
+      HWY_DYNAMIC_DISPATCH(RowsToColumns)(source.data() + 3 * first, n, column(3 * k), column(3 * k + 1), column(3 * k + 2));
+    }
+    const auto part = [&](std::size_t k) { return std::span<const double>(column(k), n); };
+    const DirectionBatch batch{part(0), part(1), part(2), part(3), part(4), part(5), part(6), part(7), part(8)};
+    eval_batch(model, tier, batch, {out + first, n});
+  }
+}
+
+}  // namespace
+
+void eval_batch(const Model& model, Tier tier, const DirectionRows& rows, std::span<double> out) {
+  if (rows.l.size() % 3 != 0 || rows.v.size() != rows.l.size() || (!rows.n.empty() && rows.n.size() != rows.l.size()))
+    throw InvalidArgument("simd::eval_batch: direction rows of different lengths, or not of 3 values each");
+  const std::size_t count = std::min(rows.size(), out.size());
+  if (model.is_lobe())
+    return lobe_model_batch(model, tier, count, out.data(), [&](std::size_t first, std::size_t n, double* c) {
+      const auto part = [&](std::span<const double> s) { return s.empty() ? s : s.subspan(3 * first, 3 * n); };
+      HWY_DYNAMIC_DISPATCH(FormCosinesRows)({part(rows.n), part(rows.l), part(rows.v)}, model.form() == Form::rv, n, c);
+    });
+  if (model.compensated() || std::holds_alternative<FormulaBrdf>(model.brdf()))
+    return rows_through_columns(model, tier, rows, count, out.data());
+  HWY_DYNAMIC_DISPATCH(FullBrdfRows)(rows, describe(model.brdf()), tier == Tier::fast, count, out.data());
 }
 
 ErrorBound error_bound(const Model& model, Tier tier) noexcept {

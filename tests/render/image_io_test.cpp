@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstring>
 #include <cmath>
 #include <random>
 
 #include "render_support.h"
 #include "specula/exceptions.h"
+#include "specula/io/files.h"
 #include "text_support.h"
 
 namespace specula::render {
@@ -51,6 +53,41 @@ TEST(Exr, FloatRoundTripIsExactWithItsMetadata) {
   EXPECT_TRUE(std::ranges::equal(read.image.samples(), image.samples()));
   for (const auto& [key, value] : kMetadata) EXPECT_EQ(get(read.metadata, key), value);
   EXPECT_THAT(dir.listing(), ElementsAre("a.exr"));
+}
+
+/// The line offset table of a scanline EXR file: the file offset of each chunk, after the header
+/// (magic, version, attributes name\0 type\0 size value, then \0).
+std::vector<std::uint64_t> line_offsets(const std::string& bytes, std::size_t chunks) {
+  std::size_t at = 8;
+  while (bytes.at(at) != '\0') {
+    const std::size_t type_end = bytes.find('\0', bytes.find('\0', at) + 1);
+    std::int32_t size = 0;
+    std::memcpy(&size, bytes.data() + type_end + 1, 4);
+    at = type_end + 5 + static_cast<std::size_t>(size);
+  }
+  std::vector<std::uint64_t> offsets(chunks);
+  std::memcpy(offsets.data(), bytes.data() + at + 1, 8 * chunks);
+  return offsets;
+}
+
+TEST(Exr, TheLineOffsetTableIsWritten) {
+  // The table is filled in when OpenEXR closes the file: bytes taken before that have zeros
+  // there, which readers can only work around by scanning the whole file.
+  TempDir dir;
+  write_exr(dir / "a.exr", sample_image(37, 40), ExrPixel::float32, kMetadata);
+  const std::string bytes = io::read_file(dir / "a.exr");
+  const auto offsets = line_offsets(bytes, 3);  // ZIP: 16 lines a chunk
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    ASSERT_GT(offsets[i], 0u) << i;
+    ASSERT_LT(offsets[i] + 8, bytes.size()) << i;
+    std::int32_t y = -1;
+    std::memcpy(&y, bytes.data() + offsets[i], 4);
+    EXPECT_EQ(y, static_cast<std::int32_t>(16 * i)) << "chunk " << i << " starts elsewhere";
+  }
+  std::string broken = bytes;  // the control: a zeroed table fails the check
+  const std::size_t table = static_cast<std::size_t>(offsets[0]) - 24;
+  std::fill_n(broken.begin() + static_cast<std::ptrdiff_t>(table), 24, '\0');
+  EXPECT_EQ(line_offsets(broken, 3)[0], 0u);
 }
 
 TEST(Exr, HalfRoundTripKeepsElevenSignificantBits) {

@@ -139,5 +139,44 @@ TEST(SimdBrdf, LobeModelsSeeTheScalarCosineExactly) {
   }
 }
 
+/// The directions of `dirs` as rows (x, y, z): N, L and V.
+std::vector<std::vector<double>> as_rows(const Directions& dirs) {
+  std::vector<std::vector<double>> rows(3);
+  for (int k = 0; k < 3; ++k)
+    for (std::size_t i = 0; i < dirs.c[0].size(); ++i) {
+      const Vec3 d = dirs.at(k, i);
+      rows[k].insert(rows[k].end(), {d.x, d.y, d.z});
+    }
+  return rows;
+}
+
+TEST(SimdBrdf, RowsGiveTheColumnsValuesBitForBit) {
+  // 2500 rows: chunks of 1024 and a tail that is not a whole vector.
+  const Directions dirs = random_directions(2500);
+  const auto rows = as_rows(dirs);
+  Directions local = dirs;  // N = +z for the rows without n
+  for (std::size_t i = 0; i < local.c[0].size(); ++i) local.c[0][i] = local.c[1][i] = 0, local.c[2][i] = 1;
+  for (const char* id : {"ggx", "ward", "log-normalized", "lambert", "ggx+ms"}) {
+    const Model model = make_model(id);
+    for (const Tier tier : {Tier::exact, Tier::fast}) {
+      std::vector<double> columns(2500), from_rows(2500), local_columns(2500), local_rows(2500);
+      eval_batch(model, tier, dirs.batch(), columns);
+      eval_batch(model, tier, DirectionRows{rows[0], rows[1], rows[2]}, from_rows);
+      EXPECT_EQ(from_rows, columns) << id;
+      eval_batch(model, tier, local.batch(), local_columns);
+      eval_batch(model, tier, DirectionRows{{}, rows[1], rows[2]}, local_rows);
+      EXPECT_EQ(local_rows, local_columns) << id;
+      EXPECT_NE(local_rows, columns) << id << ": the control, other normals, differs";
+    }
+  }
+  EXPECT_THROW(eval_batch(make_model("ggx"), Tier::exact, DirectionRows{{}, rows[1], std::span(rows[2]).first(9)},
+                          std::span<double>()),
+               InvalidArgument);
+  EXPECT_THROW(eval_batch(make_model("ggx"), Tier::exact, DirectionRows{{}, std::span(rows[1]).first(7),
+                                                                       std::span(rows[2]).first(7)},
+                          std::span<double>()),
+               InvalidArgument);
+}
+
 }  // namespace
 }  // namespace specula::simd

@@ -37,6 +37,11 @@ std::shared_ptr<const EnergyTable> cached_energy_table(const Model& base);
 /// Forgets the cached tables (the registry does when user models are cleared).
 void clear_energy_tables();
 
+/// The documented size of a table (docs/robustness.md, measured): 65536 cells of Cook-Torrance,
+/// the costliest built-in albedo, take about a minute on two idle cores; an E_avg costs 100-400
+/// cells, so at most 256 of them. Every interface (specula lut, import specula) keeps to these.
+inline constexpr std::size_t kMaxLutAxisValues = 1024, kMaxLutCells = 65'536, kMaxLutAverages = 256;
+
 /// Called as cells finish (from any thread, one call at a time): cells done, cells in all.
 using Progress = std::function<void(std::size_t done, std::size_t total)>;
 /// The model at parameter value p.

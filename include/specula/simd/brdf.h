@@ -35,6 +35,20 @@ struct DirectionBatch {
 /// (bounds above). Throws InvalidArgument if the direction spans differ in length.
 void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::span<double> out);
 
+/// Directions as rows, (x, y, z) after (x, y, z), as a C array of shape (count, 3) holds them
+/// (NumPy's): L_i = l[3i…3i+2], V_i likewise, N_i likewise or +z (the local frame) when n is empty.
+/// l, v and a given n hold 3·count values.
+struct DirectionRows {
+  std::span<const double> n, l, v;
+
+  std::size_t size() const noexcept { return l.size() / 3; }
+};
+
+/// The same values as the columns' eval_batch, bit for bit: the rows become columns a cache-sized
+/// chunk at a time (vector deinterleaving), with no copy of the whole input. Throws
+/// InvalidArgument unless l and v (and n if given) hold the same multiple of 3 values.
+void eval_batch(const Model& model, Tier tier, const DirectionRows& rows, std::span<double> out);
+
 /// The bound above for `model` at `tier`, in simd/lobes.h's form (F = f/k for lobe models):
 /// its family's, or 0 for a user's formula BRDF (bit-identical).
 ErrorBound error_bound(const Model& model, Tier tier) noexcept;
