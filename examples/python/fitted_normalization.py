@@ -13,7 +13,7 @@ import matplotlib.pyplot as plt  # type: ignore[import]  # noqa: E402
 out = sys.argv[1] if len(sys.argv) > 1 else "."
 n = np.geomspace(1, 1000, 50)
 k = specula.normalize("log", n=n)
-result = specula.fit(n, k, variables=["n"], ops="+,*,/", time=30, generations=40, threads=1)
+result = specula.fit(n, k, variables=["n"], ops="+,*,/", time=30, generations=10, threads=1)
 k_fit = result.best({"n": n})
 print("k(n) ≈", result.best, f"(rms {result.best.train_error:.3g}, {result.evaluations} formulas tried)")
 fig, (top, bottom) = plt.subplots(2, 1, sharex=True)

@@ -248,9 +248,9 @@ def design(target="phong", *, params=None, form=None, param="n", range=(1, 1000)
     DesignResult. ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
     model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget).
 
-    >>> r = specula.design("phong", range=(1, 100), ops="fma,mul", max_cost=2, measure_cost=False, time=60)
-    >>> r.front[0]["formula"]
-    'c'
+    >>> r = specula.design("phong", range=(1, 100), ops="mul", max_cost=1, measure_cost=False, time=60)
+    >>> [lobe["formula"] for lobe in r.front]
+    ['c', 'c ^ 2']
     """
     return DesignResult(_design(dict(target=target, params=dict(params if params is not None else {}), form=form, param=param, range=range,
                                       objective=objective, zone=zone, ops=ops, max_cost=max_cost,

@@ -189,9 +189,10 @@ def test_the_examples_run_and_type_check(specula, tmp_path):
     examples = os.path.join(os.environ["SPECULA_SOURCE_DIR"], "examples", "python")
     scripts = sorted(os.path.join(examples, f) for f in os.listdir(examples) if f.endswith(".py"))
     assert len(scripts) >= 6
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(os.path.abspath(p) for p in os.environ["PYTHONPATH"].split(os.pathsep)))
     for script in scripts:  # each writes its figures into the directory it is given
         done = subprocess.run([sys.executable, script, str(tmp_path)], capture_output=True, text=True, timeout=300,
-                              cwd=tmp_path)
+                              cwd=tmp_path, env=env)
         assert done.returncode == 0, done.stderr
     figures = sorted(p.name for p in tmp_path.iterdir())
     assert figures == ["albedo.png", "fig2.png", "fig3.png", "fig4.png", "fitted-normalization.png",
