@@ -23,6 +23,54 @@ bool allowed(const Genome& g, const SimplifyRules& rules) {
   return std::all_of(g.begin(), g.end(), [&](const expr::Node& n) { return allowed(n, rules); });
 }
 
+bool has(const SimplifyRules& rules, Op op) {
+  return std::find(rules.operators.begin(), rules.operators.end(), op) != rules.operators.end();
+}
+
+/// The integer power x^k the search may not write, as it may: x·x·…·x for 2 ≤ k ≤ kMaxExpanded,
+/// 1/(x·…·x) for −kMaxExpanded ≤ k ≤ −1.
+constexpr double kMaxExpanded = 4;
+
+std::optional<int> expandable_exponent(const expr::Node& n, const SimplifyRules& rules) {
+  if (!expr::is_exact(n) || n.value != std::round(n.value) || std::abs(n.value) > kMaxExpanded) return std::nullopt;
+  const int k = static_cast<int>(n.value);
+  if (k >= 2 && has(rules, Op::mul)) return k;
+  if (k <= -1 && has(rules, Op::div) && (k == -1 || has(rules, Op::mul))) return k;
+  return std::nullopt;
+}
+
+/// The subtree of `g` ending at `root`, written into `out` with its integer powers expanded.
+void write_expanded(const Genome& g, const std::vector<std::size_t>& starts, std::size_t root,
+                    const SimplifyRules& rules, Genome& out) {
+  const expr::Node& n = g[root];
+  const int arity = expr::arity(n.op);
+  if (n.op == Op::pow) {
+    const std::size_t base = starts[root - 1] - 1;
+    if (const auto k = expandable_exponent(g[root - 1], rules)) {
+      if (*k < 0) out.push_back(expr::Node{Op::constant, 0, 1.0, 1, 1});
+      for (int i = 0; i < std::abs(*k); ++i) {
+        write_expanded(g, starts, base, rules, out);
+        if (i > 0) out.push_back(expr::Node{Op::mul, 0, 0});
+      }
+      if (*k < 0) out.push_back(expr::Node{Op::div, 0, 0});
+      return;
+    }
+  }
+  if (arity == 2) write_expanded(g, starts, starts[root - 1] - 1, rules, out);
+  if (arity >= 1) write_expanded(g, starts, root - 1, rules, out);
+  out.push_back(n);
+}
+
+/// `g` with the integer powers the simplifier made (x·x → x²) written back as products where the
+/// search's operators have no ^: the rest of the simplification (signs, folding, order) is kept.
+Genome powers_as_products(const Genome& g, const SimplifyRules& rules) {
+  if (has(rules, Op::pow) || std::none_of(g.begin(), g.end(), [](const expr::Node& n) { return n.op == Op::pow; }))
+    return g;
+  Genome out;
+  write_expanded(g, subtree_starts(g), g.size() - 1, rules, out);
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> slot_names(std::size_t count) {
@@ -58,10 +106,10 @@ bool relies_on_cancellation(const Genome& g, const Rows& rows) {
 std::optional<Genome> simplified(const Genome& g, std::span<const double> predicted, const Rows& rows,
                                  const SimplifyRules& rules) {
   const expr::Expression simple = expr::simplify(expr::Expression(g, slot_names(rows.columns.size())));
-  Genome out(simple.nodes().begin(), simple.nodes().end());
+  Genome out = powers_as_products(Genome(simple.nodes().begin(), simple.nodes().end()), rules);
   if (expr::same_nodes(out, g) || rules.weights.of(out) > rules.weights.of(g) || !allowed(out, rules)) return std::nullopt;
   std::vector<double> values(predicted.size());
-  expr::evaluate_batch(simple, rows.columns, values);
+  expr::evaluate_batch(expr::Expression(out, slot_names(rows.columns.size())), rows.columns, values);
   if (!expr::values_agree(values, predicted)) return std::nullopt;
   return out;
 }

@@ -49,6 +49,21 @@ TEST(Simplified, ReplacesAFormulaThatComputesTheSame) {
   EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, all_operators())), "5 * v0");
 }
 
+// Without ^ among the operators, the powers the simplifier makes (v0·v0 → v0²) go back to
+// products, and the rest of its work stays: here the double negation a − (−b − c)/d.
+TEST(Simplified, WritesPowersAsProductsWhenTheOperatorsHaveNoPower) {
+  const Genome g = genome("v0 - (-2 * v0 - 3) / (v0 * v0 + 1)");
+  const Case c({0.5, 1, 2, 3}, g);
+  const SimplifyRules no_power{{expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div}, Constants::fitted, {}};
+  EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, no_power)), "v0 + (2 * v0 + 3) / (v0 * v0 + 1)");
+  EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, all_operators())), "v0 + (2 * v0 + 3) / (v0 ^ 2 + 1)");
+  const Genome reciprocal = genome("v0 / (v0 * v0 * v0)");  // v0^-2: 1 / (v0 · v0)
+  const Case r({0.5, 1, 2, 3}, reciprocal);
+  EXPECT_EQ(text(simplified_or_same(reciprocal, r.predicted, r.rows, no_power)), "1 / (v0 * v0)");
+  const SimplifyRules no_division{{expr::Op::add, expr::Op::mul}, Constants::fitted, {}};  // the control
+  EXPECT_EQ(text(simplified_or_same(reciprocal, r.predicted, r.rows, no_division)), "v0 / (v0 * v0 * v0)");
+}
+
 TEST(Simplified, KeepsAFormulaWhoseRewriteChangesItsValuesOnTheData) {
   // √x·√x is x only where x ≥ 0: with a negative row the data refuses the rewrite.
   const Genome g = genome("sqrt(v0) * sqrt(v0)");
