@@ -33,6 +33,20 @@ def _as_vectors(name, x):
     return a
 
 
+def _broadcast(named):
+    """The arrays of `named` ((name, array, is_vector) triples) broadcast to one shape, flattened
+    to rows: (shape, rows...)."""
+    shapes = [a.shape[:-1] if vector else a.shape for _, a, vector in named]
+    try:
+        shape = np.broadcast_shapes(*shapes)
+    except ValueError:
+        raise ValueError(", ".join(n for n, _, _ in named) + " must broadcast to one shape, got shapes "
+                         + ", ".join(str(s) for s in shapes)) from None
+    rows = [np.ascontiguousarray(np.broadcast_to(a, shape + ((3,) if vector else ()))).reshape((-1, 3) if vector else -1)
+            for _, a, vector in named]
+    return shape, rows
+
+
 def _call(self, l, v, n=None, tier="exact", out=None):
     """f(N, L, V) over arrays of unit directions of shape (..., 3), broadcast against each other:
     l toward the light, v toward the viewer, n the normal (default +z, the local frame). Returns
@@ -42,13 +56,8 @@ def _call(self, l, v, n=None, tier="exact", out=None):
     >>> specula.model("lambert")([0, 0, 1], [[0, 0, 1], [0.6, 0, 0.8]])
     array([0.31830989, 0.31830989])
     """
-    vectors = [_as_vectors("l", l), _as_vectors("v", v)] + ([] if n is None else [_as_vectors("n", n)])
-    try:
-        shape = np.broadcast_shapes(*(a.shape[:-1] for a in vectors))
-    except ValueError:
-        raise ValueError("l, v and n must broadcast to one shape (..., 3), got shapes "
-                         + ", ".join(str(a.shape) for a in vectors)) from None
-    flat = [np.ascontiguousarray(np.broadcast_to(a, shape + (3,))).reshape(-1, 3) for a in vectors]
+    named = [("l", l), ("v", v)] + ([] if n is None else [("n", n)])
+    shape, flat = _broadcast([(name, _as_vectors(name, x), True) for name, x in named])
     if out is not None:
         if not isinstance(out, np.ndarray) or out.dtype != np.float64:
             raise TypeError("out must be a float64 array")
@@ -67,20 +76,6 @@ def _eval(self, wi, wo, tier="exact", out=None):
 
 Model.__call__ = _call
 Model.eval = _eval
-
-
-def _broadcast(named):
-    """The arrays of `named` ((name, array, is_vector) triples) broadcast to one shape, flattened
-    to rows: (shape, rows...)."""
-    shapes = [a.shape[:-1] if vector else a.shape for _, a, vector in named]
-    try:
-        shape = np.broadcast_shapes(*shapes)
-    except ValueError:
-        raise ValueError(", ".join(n for n, _, _ in named) + " must broadcast to one shape, got shapes "
-                         + ", ".join(str(s) for s in shapes)) from None
-    rows = [np.ascontiguousarray(np.broadcast_to(a, shape + ((3,) if vector else ()))).reshape((-1, 3) if vector else -1)
-            for _, a, vector in named]
-    return shape, rows
 
 
 def _sample(self, wi, u1, u2):
