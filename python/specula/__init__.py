@@ -7,6 +7,8 @@ array([1.        , 0.81631928])
 >>> specula.normalize("log", n=[1, 20])
 array([0.48274948, 4.19275612])
 """
+import math
+
 import numpy as np
 
 from ._specula import (CheckResult, FitResult, Formula, Model, albedo, check, clear_models, error, export, glsl,
@@ -33,37 +35,44 @@ def _as_vectors(name, x):
     return a
 
 
+MAX_BROADCAST = 2**28
+"""The most directions (elements of the broadcast shape) one call of a model, sample() or pdf()
+takes: its results stay within 2 GiB (a model's values) to 10 GiB (sample's)."""
+
+
 def _broadcast(named):
-    """The arrays of `named` ((name, array, is_vector) triples) broadcast to one shape, flattened
-    to rows: (shape, rows...)."""
+    """The arrays of `named` ((name, array, is_vector) triples) broadcast to one shape: (shape,
+    views), read-only views of that shape (+ (3,) for vectors) that copy nothing. ValueError when
+    they do not broadcast, or broadcast to more than MAX_BROADCAST directions."""
     shapes = [a.shape[:-1] if vector else a.shape for _, a, vector in named]
+    names, listed = ", ".join(n for n, _, _ in named), ", ".join(str(s) for s in shapes)
     try:
         shape = np.broadcast_shapes(*shapes)
     except ValueError:
-        raise ValueError(", ".join(n for n, _, _ in named) + " must broadcast to one shape, got shapes "
-                         + ", ".join(str(s) for s in shapes)) from None
-    rows = [np.ascontiguousarray(np.broadcast_to(a, shape + ((3,) if vector else ()))).reshape((-1, 3) if vector else -1)
-            for _, a, vector in named]
-    return shape, rows
+        raise ValueError(f"{names} must broadcast to one shape, got shapes {listed}") from None
+    if math.prod(shape) > MAX_BROADCAST:
+        raise ValueError(f"{names} of shapes {listed} broadcast to shape {shape}: {math.prod(shape)} directions, "
+                         f"more than the {MAX_BROADCAST} (MAX_BROADCAST) a call takes")
+    return shape, [np.broadcast_to(a, shape + ((3,) if vector else ())) for _, a, vector in named]
 
 
 def _call(self, l, v, n=None, tier="exact", out=None):
     """f(N, L, V) over arrays of unit directions of shape (..., 3), broadcast against each other:
-    l toward the light, v toward the viewer, n the normal (default +z, the local frame). Returns
-    an array of the broadcast shape without the last axis (or fills `out`, a C-contiguous float64
-    array of that shape). tier: 'exact' or 'fast'.
+    l toward the light, v toward the viewer, n the normal (default +z, the local frame), at most
+    MAX_BROADCAST directions. Returns an array of the broadcast shape without the last axis (or
+    fills `out`, a C-contiguous float64 array of that shape). tier: 'exact' or 'fast'.
 
     >>> specula.model("lambert")([0, 0, 1], [[0, 0, 1], [0.6, 0, 0.8]])
     array([0.31830989, 0.31830989])
     """
     named = [("l", l), ("v", v)] + ([] if n is None else [("n", n)])
-    shape, flat = _broadcast([(name, _as_vectors(name, x), True) for name, x in named])
+    shape, views = _broadcast([(name, _as_vectors(name, x), True) for name, x in named])
     if out is not None:
         if not isinstance(out, np.ndarray) or out.dtype != np.float64:
             raise TypeError("out must be a float64 array")
         if out.shape != shape or not out.flags.c_contiguous or not out.flags.writeable:
             raise ValueError(f"out must be a writable C-contiguous array of shape {shape}, got {out.shape}")
-    values = self._directions(flat[0], flat[1], flat[2] if n is not None else None, tier,
+    values = self._directions(views[0], views[1], views[2] if n is not None else None, tier,
                               None if out is None else out.reshape(-1))
     return values.reshape(shape) if out is None else out
 

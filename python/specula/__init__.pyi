@@ -6,6 +6,8 @@ import numpy.typing as npt
 
 Tier = Literal["exact", "fast"]
 
+MAX_BROADCAST: int
+
 class CheckResult:
     albedo_normal: float
     max_albedo: float

@@ -124,8 +124,9 @@ void bind_analysis(py::module_& m) {
         "The largest error of the bare lobe against a reference lobe at each n (specula error): a dict\n"
         "of arrays n, max_abs, argmax_abs_deg, max_rel_epicenter, max_rel_attenuation.\n\n"
         ">>> specula.error('log', n=[20])['max_abs']\narray([0.125])");
-  py::class_<analysis::CheckResult>(m, "CheckResult", "What specula check finds: the verdicts and their margins.")
-      .def_readonly("albedo_normal", &analysis::CheckResult::albedo_normal)
+  py::class_<analysis::CheckResult> check_result(m, "CheckResult",
+                                                 "What specula check finds: the verdicts and their margins.");
+  check_result.def_readonly("albedo_normal", &analysis::CheckResult::albedo_normal)
       .def_property_readonly("max_albedo", [](const analysis::CheckResult& r) { return r.max_albedo.value; })
       .def_property_readonly("max_albedo_theta", [](const analysis::CheckResult& r) { return r.max_albedo.theta_deg; })
       .def_readonly("max_asymmetry", &analysis::CheckResult::max_asymmetry)
@@ -137,6 +138,7 @@ void bind_analysis(py::module_& m) {
       .def_property_readonly("all_hold", &analysis::CheckResult::all_hold)
       .def("__bool__", &analysis::CheckResult::all_hold)
       .def("__repr__", &check_repr);
+  refuse_pickling(check_result);
   m.def("check", &check, py::arg("model"), py::arg("pairs") = 10'000, py::arg("seed") = 1, py::arg("step") = 1.0,
         py::arg("grazing") = std::vector<double>{89.5, 89.9},
         "Energy conservation at every angle, reciprocity and non-negativity (specula check).\n\n"

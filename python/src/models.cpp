@@ -71,16 +71,15 @@ py::array_t<T> output_for(const py::array& c, const py::object& out) {
 
 template <class T>
 py::array lobe_batch(const Model& model, simd::Tier tier, const py::handle& input, const py::object& out_arg) {
-  const auto c = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(input);
+  const auto c = py::array_t<T>::ensure(input);  // an array of T as it is, strides and all
   if (!c) throw py::type_error(fmt::format("c must be an array of numbers, got {}", std::string(py::str(py::type::of(input)))));
   py::array_t<T> out = output_for<T>(c, out_arg);
-  const std::span<const T> in(c.data(), static_cast<std::size_t>(c.size()));
-  const std::span<T> values(out.mutable_data(), static_cast<std::size_t>(out.size()));
+  Elements<T> cosines(c, out_arg);
+  T* values = out.mutable_data();
   const simd::LobeSpec spec = simd::spec_of(model.lobe());
-  {
-    const py::gil_scoped_release release;
-    simd::eval_batch(spec, tier, in, values);
-  }
+  for_chunks(cosines.size(), kMaxChunkValues, [&](std::size_t begin, std::size_t end) {
+    simd::eval_batch(spec, tier, cosines.chunk(begin, end), std::span<T>(values + begin, end - begin));
+  });
   return out;
 }
 
@@ -94,33 +93,31 @@ py::array lobe_values(const PyModel& m, const py::object& c, const std::string& 
   return lobe_batch<double>(m.model, tier_named(tier), values, out);
 }
 
-using Directions = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-/// f(N, L, V) for rows of (count, 3) arrays (the Python side broadcasts and flattens), written
-/// into `out_arg` (a C-contiguous float64 array of count values) or a new array, through the
-/// batch path over rows (no copy of the input).
-py::array_t<double> direction_values(const PyModel& m, const Directions& l, const Directions& v,
-                                     const std::optional<Directions>& n, const std::string& tier_name,
+/// f(N, L, V) for the 3-vectors of l, v and n, arrays of shape (..., 3) of as many vectors (the
+/// Python side broadcasts them: broadcast views, read through their strides, not copied), written
+/// into `out_arg` (a C-contiguous float64 array of one value per vector) or a new array, through
+/// the batch path over rows a chunk at a time.
+py::array_t<double> direction_values(const PyModel& m, const py::array_t<double>& l, const py::array_t<double>& v,
+                                     const std::optional<py::array_t<double>>& n, const std::string& tier_name,
                                      const py::object& out_arg) {
-  const auto rows = [](const Directions& a, const char* name) {
-    if (a.ndim() != 2 || a.shape(1) != 3)
-      throw InvalidField(name, fmt::format("{} must be an array of 3-vectors, shape (..., 3)", name));
-    return std::span<const double>(a.data(), static_cast<std::size_t>(a.size()));
-  };
-  const simd::DirectionRows directions{n ? rows(*n, "n") : std::span<const double>{}, rows(l, "l"), rows(v, "v")};
-  if (directions.v.size() != directions.l.size() || (n && directions.n.size() != directions.l.size()))
+  const std::size_t count = vector_count(l, "l");
+  if (vector_count(v, "v") != count || (n && vector_count(*n, "n") != count))
     throw InvalidField("v", "l, v and n must hold as many directions");
   const simd::Tier tier = tier_named(tier_name);
-  const std::size_t count = directions.size();
   if (!out_arg.is_none() && !py::isinstance<py::array_t<double>>(out_arg)) throw py::type_error("out must be a float64 array");
   py::array_t<double> out = out_arg.is_none() ? py::array_t<double>(static_cast<py::ssize_t>(count))
                                               : py::reinterpret_borrow<py::array_t<double>>(out_arg);
   if (out.size() != static_cast<py::ssize_t>(count) || !out.writeable() || !(out.flags() & py::array::c_style))
     throw InvalidField("out", "out must be a writable C-contiguous array of the directions' shape");
-  {
-    const py::gil_scoped_release release;
-    simd::eval_batch(m.model, tier, directions, std::span<double>(out.mutable_data(), count));
-  }
+  Elements<double> lights(l, out_arg), views(v, out_arg);
+  std::optional<Elements<double>> normals;
+  if (n) normals.emplace(*n, out_arg);
+  double* values = out.mutable_data();
+  for_chunks(count, kMaxChunkRows, [&](std::size_t begin, std::size_t end) {
+    const simd::DirectionRows rows{normals ? normals->chunk(3 * begin, 3 * end) : std::span<const double>{},
+                                   lights.chunk(3 * begin, 3 * end), views.chunk(3 * begin, 3 * end)};
+    simd::eval_batch(m.model, tier, rows, std::span<double>(values + begin, end - begin));
+  });
   return out;
 }
 
@@ -139,6 +136,13 @@ py::tuple pickled(const PyModel& m) {
                         m.coef ? py::object(py::float_(*m.coef)) : py::object(py::none()));
 }
 
+/// What pickle saves of a Model at any protocol: copyreg.__newobj__(type(self)), then
+/// __setstate__(pickled(self)), the very pickle protocol 2 makes by default.
+py::tuple reduced(const py::object& self) {
+  return py::make_tuple(py::module_::import("copyreg").attr("__newobj__"), py::make_tuple(py::type::of(self)),
+                        pickled(self.cast<const PyModel&>()));
+}
+
 ParamValues params_of(const py::kwargs& kwargs) {
   ParamValues out;
   for (const auto& [key, value] : kwargs) {
@@ -154,6 +158,12 @@ ParamValues params_of(const py::kwargs& kwargs) {
 }  // namespace
 
 std::string python_repr(const std::string& text) { return py::repr(py::str(text)); }
+
+std::size_t vector_count(const py::array_t<double>& a, const char* name) {
+  if (a.ndim() == 0 || a.shape(a.ndim() - 1) != 3)
+    throw InvalidField(name, fmt::format("{} must be an array of 3-vectors, shape (..., 3)", name));
+  return static_cast<std::size_t>(a.size() / 3);
+}
 
 std::shared_mutex& catalogue_mutex() {
   static std::shared_mutex mutex;
@@ -261,7 +271,10 @@ py::class_<PyModel> bind_models(py::module_& m) {
         for (const auto& [key, value] : t[1].cast<py::dict>()) params[py::str(key)] = value.cast<double>();
         return make_py_model(t[0].cast<std::string>(), params, t[2].cast<std::optional<std::string>>(),
                              t[3].cast<std::optional<double>>());
-      }));
+      }))
+      .def("__reduce__", &reduced,
+           "Pickles at every protocol as protocol 2 does: Model.__new__, then __setstate__ (protocols 0\n"
+           "and 1 would otherwise call pybind11's base type, which aborts the interpreter).");
 
   m.def(
       "model",

@@ -14,73 +14,80 @@ namespace specula::python {
 
 namespace {
 
-using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
 const sampling::Sampler& sampler_of(const PyModel& m) {
   if (!m.sampler) m.sampler = std::make_shared<const sampling::Sampler>(m.model);
   return *m.sampler;
 }
 
-std::size_t row_count(const Rows& a, const char* name, py::ssize_t columns) {
-  if (columns == 3 ? a.ndim() != 2 || a.shape(1) != 3 : a.ndim() != 1)
-    throw InvalidField(name, columns == 3 ? fmt::format("{} must be an array of 3-vectors, shape (..., 3)", name)
-                                          : fmt::format("{} must be an array of numbers", name));
-  return static_cast<std::size_t>(a.shape(0));
-}
-
-/// Row i of a (count, 3) array as a unit vector; nullopt when it has no direction (zero length,
+/// Row i of a chunk of 3-vectors as a unit vector; nullopt when it has no direction (zero length,
 /// inf or NaN).
-std::optional<Vec3> unit_row(const double* rows, std::size_t i) {
+std::optional<Vec3> unit_row(std::span<const double> rows, std::size_t i) {
   const Vec3 v{rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]};
   const double length = std::sqrt(dot(v, v));
   if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
   return v * (1 / length);
 }
 
-/// Rows in parallel (the sampler is read-only), the GIL released.
+/// Rows [0, count) of a chunk in parallel (the sampler is read-only), in ranges of at least 64 rows
+/// (a chunk of costly rows holds a few thousand).
 template <class Body>
-void for_rows(std::size_t count, const Body& body) {
-  const py::gil_scoped_release release;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+void parallel_rows(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) body(i);
   });
 }
 
-py::tuple sample_rows(const PyModel& m, const Rows& wi, const Rows& u1, const Rows& u2) {
-  const std::size_t count = row_count(wi, "wi", 3);
-  if (row_count(u1, "u1", 1) != count || row_count(u2, "u2", 1) != count)
+/// Elements [begin, end) of a uniform number's array, each in [0, 1) (ValueError naming the
+/// first that is not, by its index in the whole array).
+std::span<const double> uniforms(Elements<double>& u, const char* name, std::size_t begin, std::size_t end) {
+  const std::span<const double> values = u.chunk(begin, end);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!(values[i] >= 0 && values[i] < 1))
+      throw InvalidField(name, fmt::format("{} must be in [0, 1), got {} at index {}", name, values[i], begin + i));
+  return values;
+}
+
+py::tuple sample_rows(const PyModel& m, const py::array_t<double>& wi, const py::array_t<double>& u1,
+                      const py::array_t<double>& u2) {
+  const std::size_t count = vector_count(wi, "wi");
+  if (static_cast<std::size_t>(u1.size()) != count || static_cast<std::size_t>(u2.size()) != count)
     throw InvalidField("u1", "wi, u1 and u2 must hold as many values");
-  for (const auto& [u, name] : {std::pair{&u1, "u1"}, std::pair{&u2, "u2"}})
-    for (std::size_t i = 0; i < count; ++i)
-      if (!(u->data()[i] >= 0 && u->data()[i] < 1))
-        throw InvalidField(name, fmt::format("{} must be in [0, 1), got {} at index {}", name, u->data()[i], i));
   const sampling::Sampler& sampler = sampler_of(m);
   py::array_t<double> wo({static_cast<py::ssize_t>(count), py::ssize_t{3}});
   py::array_t<double> pdf(static_cast<py::ssize_t>(count)), weight(static_cast<py::ssize_t>(count));
   double* wo_out = wo.mutable_data();
   double* pdf_out = pdf.mutable_data();
   double* weight_out = weight.mutable_data();
-  const double *wi_in = wi.data(), *u1_in = u1.data(), *u2_in = u2.data();
-  for_rows(count, [&](std::size_t i) {
-    const std::optional<Vec3> w = unit_row(wi_in, i);
-    const sampling::Sample s = w && w->z > 0 ? sampler.sample(*w, u1_in[i], u2_in[i]) : sampling::Sample{};
-    wo_out[3 * i] = s.wo.x, wo_out[3 * i + 1] = s.wo.y, wo_out[3 * i + 2] = s.wo.z;
-    pdf_out[i] = s.pdf;
-    weight_out[i] = s.weight;
+  Elements<double> directions(wi, py::none()), first(u1, py::none()), second(u2, py::none());
+  for_chunks(count, kMaxChunkRows, [&](std::size_t begin, std::size_t end) {
+    const std::span<const double> w_in = directions.chunk(3 * begin, 3 * end);
+    const std::span<const double> u1_in = uniforms(first, "u1", begin, end), u2_in = uniforms(second, "u2", begin, end);
+    parallel_rows(end - begin, [&](std::size_t i) {
+      const std::optional<Vec3> w = unit_row(w_in, i);
+      const sampling::Sample s = w && w->z > 0 ? sampler.sample(*w, u1_in[i], u2_in[i]) : sampling::Sample{};
+      const std::size_t row = begin + i;
+      wo_out[3 * row] = s.wo.x, wo_out[3 * row + 1] = s.wo.y, wo_out[3 * row + 2] = s.wo.z;
+      pdf_out[row] = s.pdf;
+      weight_out[row] = s.weight;
+    });
   });
   return py::make_tuple(wo, pdf, weight);
 }
 
-py::array_t<double> pdf_rows(const PyModel& m, const Rows& wi, const Rows& wo) {
-  const std::size_t count = row_count(wi, "wi", 3);
-  if (row_count(wo, "wo", 3) != count) throw InvalidField("wo", "wi and wo must hold as many directions");
+py::array_t<double> pdf_rows(const PyModel& m, const py::array_t<double>& wi, const py::array_t<double>& wo) {
+  const std::size_t count = vector_count(wi, "wi");
+  if (vector_count(wo, "wo") != count) throw InvalidField("wo", "wi and wo must hold as many directions");
   const sampling::Sampler& sampler = sampler_of(m);
   py::array_t<double> pdf(static_cast<py::ssize_t>(count));
   double* out = pdf.mutable_data();
-  const double *wi_in = wi.data(), *wo_in = wo.data();
-  for_rows(count, [&](std::size_t i) {
-    const std::optional<Vec3> a = unit_row(wi_in, i), b = unit_row(wo_in, i);
-    out[i] = a && b && a->z > 0 ? sampler.pdf(*a, *b) : 0.0;
+  Elements<double> incoming(wi, py::none()), outgoing(wo, py::none());
+  for_chunks(count, kMaxChunkRows, [&](std::size_t begin, std::size_t end) {
+    const std::span<const double> wi_in = incoming.chunk(3 * begin, 3 * end);
+    const std::span<const double> wo_in = outgoing.chunk(3 * begin, 3 * end);
+    parallel_rows(end - begin, [&](std::size_t i) {
+      const std::optional<Vec3> a = unit_row(wi_in, i), b = unit_row(wo_in, i);
+      out[begin + i] = a && b && a->z > 0 ? sampler.pdf(*a, *b) : 0.0;
+    });
   });
   return pdf;
 }

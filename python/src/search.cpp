@@ -38,10 +38,12 @@ py::array_t<double> evaluate_columns(const Formula& f, const std::vector<py::arr
     spans.emplace_back(c.data(), static_cast<std::size_t>(rows));
   }
   py::array_t<double> out(rows);
-  {
-    const py::gil_scoped_release release;
-    expr::evaluate_batch(f.formula, spans, std::span<double>(out.mutable_data(), static_cast<std::size_t>(rows)));
-  }
+  double* values = out.mutable_data();
+  for_chunks(static_cast<std::size_t>(rows), kMaxChunkValues, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::span<const double>> chunk;
+    for (const auto& column : spans) chunk.push_back(column.subspan(begin, end - begin));
+    expr::evaluate_batch(f.formula, chunk, std::span<double>(values + begin, end - begin));
+  });
   return out;
 }
 
@@ -92,6 +94,20 @@ FitResult fit_columns(std::vector<std::string> variables, std::vector<std::vecto
   for (const auto& c : r.front) out.front.push_back({c.formula, c.size, c.train_error, c.test_error});
   return out;
 }
+
+}  // namespace
+}  // namespace specula::python
+
+// Formula and FitResult check their instance like every bound class (binding.h).
+template <>
+struct pybind11::detail::type_caster<specula::python::Formula>
+    : specula::python::ConstructedCaster<specula::python::Formula> {};
+template <>
+struct pybind11::detail::type_caster<specula::python::FitResult>
+    : specula::python::ConstructedCaster<specula::python::FitResult> {};
+
+namespace specula::python {
+namespace {
 
 std::string formula_repr(const Formula& f) {
   return fmt::format("Formula({}, size={}, train_error={:.6g})", python_repr(shown(f)), f.size, f.train_error);
@@ -171,9 +187,10 @@ py::dict design_run(const py::dict& kwargs) {
 }  // namespace
 
 void bind_search(py::module_& m) {
-  py::class_<Formula>(m, "Formula", "A formula of a fit's front: its text, size and errors; call it on data like X.")
-      .def_property_readonly("formula", [](const Formula& f) { return expr::to_infix(f.formula); },
-                             "The formula with its constants at full precision (parses back bit-identically).")
+  py::class_<Formula> formula(m, "Formula",
+                              "A formula of a fit's front: its text, size and errors; call it on data like X.");
+  formula.def_property_readonly("formula", [](const Formula& f) { return expr::to_infix(f.formula); },
+                                "The formula with its constants at full precision (parses back bit-identically).")
       .def_property_readonly("text", &shown, "The formula with 6 significant digits, as specula fit prints it.")
       .def_property_readonly("variables", [](const Formula& f) { return f.formula.variables(); })
       .def_readonly("size", &Formula::size)
@@ -190,8 +207,10 @@ void bind_search(py::module_& m) {
       .def("_evaluate", &evaluate_columns)
       .def("__str__", &shown)
       .def("__repr__", &formula_repr);
-  py::class_<FitResult>(m, "FitResult", "The Pareto front of a fit: formulas by size, each more accurate.")
-      .def_readonly("front", &FitResult::front)
+  refuse_pickling(formula);
+  py::class_<FitResult> fit_result(m, "FitResult",
+                                    "The Pareto front of a fit: formulas by size, each more accurate.");
+  fit_result.def_readonly("front", &FitResult::front)
       .def_readonly("chosen", &FitResult::chosen)
       .def_property_readonly("best", [](const FitResult& r) { return r.front.at(r.chosen); },
                              "The chosen formula (choose=…): front[chosen].")
@@ -203,6 +222,7 @@ void bind_search(py::module_& m) {
         return fmt::format("FitResult({} formulas, best {}, stopped by {})", r.front.size(),
                            formula_repr(r.front.at(r.chosen)), r.stopped_by);
       });
+  refuse_pickling(fit_result);
   m.def("_fit", &fit_columns);
   m.def("_design", &design_run);
 }

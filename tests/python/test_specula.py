@@ -100,6 +100,35 @@ def test_directions_are_the_clis(specula):
     assert m(np.tile(light, (2, 5, 1)), views[0]).shape == (2, 5)
 
 
+def test_views_are_read_through_their_strides(specula):
+    """Inputs are read where they lie, a chunk at a time (docs/python.md): strided, reversed,
+    transposed and broadcast views, more than one chunk of them, give the values of their
+    contiguous copies; an out= that overlaps the input gets the values of the input as it was."""
+    log, ggx = specula.model("log", n=20), specula.model("ggx", alpha=0.3)
+    c = np.linspace(0, 1, 3 * 70_001).reshape(3, -1)
+    for view in [c[:, ::-3], c.T, c[::-1, 5], np.broadcast_to(c[0, :7], (40_000, 7)), c[1, 2]]:
+        same(log.lobe(view), log.lobe(view.copy()))
+        same(log.lobe(view.astype(np.float32)[()]), log.lobe(np.array(view, dtype=np.float32)))
+    t = np.radians(np.linspace(0, 89, 50_000))
+    v = np.stack([np.sin(t), 0 * t, np.cos(t)], axis=-1)
+    lights = v[::-7, None, :]   # (7143, 1, 3) against (1, 5, 3): (7143, 5) directions
+    views = v[:5][None]
+    same(ggx(lights, views), ggx(np.ascontiguousarray(np.broadcast_to(lights, (len(lights), 5, 3))),
+                                 np.ascontiguousarray(np.broadcast_to(views, (len(lights), 5, 3)))))
+    same(ggx(v.T.copy().T, v[::-1], n=[0, 0, 1]), ggx(v, v[::-1].copy()))
+    u = np.linspace(0, 0.999, 40_000)
+    tiled = np.tile(v[0], (40_000, 10, 1)), np.repeat(u[:, None], 10, 1), np.tile(u[::-4000], (40_000, 1))
+    for got, expected in zip(ggx.sample(v[0], u[:, None], u[None, ::-4000]), ggx.sample(*tiled)):
+        same(got, expected)
+    same(ggx.pdf(v[0], v[::-2]), ggx.pdf(np.tile(v[0], (25_000, 1)), v[::-2].copy()))
+    memory = np.linspace(0, 1, 2 * 70_001)
+    before = memory[::-2].copy()
+    out = log.lobe(memory[::-2], out=memory[:70_001])   # writes the memory it reads, in another order
+    same(out, log.lobe(before))
+    inplace = before.copy()
+    same(log.lobe(inplace, out=inplace), log.lobe(before))
+
+
 def test_normalize_albedo_error_check_are_the_clis(specula):
     same(specula.normalize("log", n=[1, 20, 1000]),
          column(cli("normalize", "-m", "log", "--n", "1,20,1000", "--format", "json"), "coef"))
