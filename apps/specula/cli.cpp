@@ -78,4 +78,28 @@ void write_output(const std::string& out, const std::string& text) {
   }
 }
 
+namespace {
+
+CLI::Validator strict_integer_check(bool is_signed) {
+  return CLI::Validator(
+      [is_signed](std::string& text) -> std::string {
+        const bool ok = is_signed ? strict_integer<std::int64_t>(text).has_value() : strict_integer<std::uint64_t>(text).has_value();
+        if (ok) return {};
+        return fmt::format("'{}' is not a whole number{} (decimal digits only{})", text,
+                           is_signed ? "" : " ≥ 0", is_signed ? ", a '-' before them if negative" : "");
+      },
+      "");
+}
+
+}  // namespace
+
+void make_integer_options_strict(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    const std::string_view base = std::string_view(type).substr(0, type.find(':'));
+    if (base == "INT" || base == "UINT") option->check(strict_integer_check(base == "INT"));
+  }
+  for (CLI::App* command : app.get_subcommands({})) make_integer_options_strict(*command);
+}
+
 }  // namespace specula::cli

@@ -2,7 +2,11 @@
 // What the commands share: model and parameter options, output options, and one function
 // that registers each command. Every command is thin: parse, call the library, print.
 #include <CLI/CLI.hpp>
+#include <charconv>
+#include <cstdint>
 #include <optional>
+#include <string_view>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -58,6 +62,23 @@ struct CheckFailed {};
 /// (each command documents its cap, which keeps its worst case bounded in time and memory).
 std::vector<double> option_values(std::string_view option, std::string_view spec,
                                   std::size_t max_values = io::kMaxValues);
+
+/// A whole number as every integer option reads it: decimal digits only, a '-' before them for a
+/// signed type (no '+', no spaces, no 0x, no exponent), within T's range; nullopt otherwise.
+template <class T>
+std::optional<T> strict_integer(std::string_view text) {
+  const std::string_view digits = std::is_signed_v<T> && text.starts_with('-') ? text.substr(1) : text;
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+  T value{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+/// Gives every integer option of `app` and its commands (CLI11's INT and UINT types) the check
+/// strict_integer makes, in addition to its own: "--seed -1", "--max-cost 0x2", "--seed ''" and
+/// "--seed 18446744073709551616" are errors (exit 2), not a wrapped or default value.
+void make_integer_options_strict(CLI::App& app);
 
 /// Text to stdout, or atomically to `out` if non-empty.
 void write_output(const std::string& out, const std::string& text);

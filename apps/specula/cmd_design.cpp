@@ -42,12 +42,12 @@ void read_range(const std::string& text, design::Settings& s) {
 
 // "I/N".
 void read_shard(const std::string& text, design::Settings& s) {
-  int i = -1, n = -1;
-  char slash = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/')
-    throw InvalidArgument(fmt::format("--shard must be I/N (0 ≤ I < N), got '{}'", text));
-  s.shard = i;
-  s.shards = n;
+  const auto slash = text.find('/');
+  const auto i = strict_integer<int>(std::string_view(text).substr(0, slash));
+  const auto n = slash == std::string::npos ? std::nullopt : strict_integer<int>(std::string_view(text).substr(slash + 1));
+  if (!i || !n) throw InvalidArgument(fmt::format("--shard must be I/N, two whole numbers with 0 ≤ I < N, got '{}'", text));
+  s.shard = *i;
+  s.shards = *n;
 }
 
 design::Settings settings_of(const DesignOptions& o) {
@@ -76,7 +76,7 @@ class ProgressPrinter {
 design::Result merged(const DesignOptions& o, const std::function<void(const design::Progress&)>& progress) {
   std::vector<design::Result> shards;
   for (const auto& dir : o.merge) shards.push_back(design::read_design(dir));
-  design::Result r = design::merge(shards, progress);
+  design::Result r = design::merge(shards, {o.settings.measure_cost, o.settings.threads, nullptr}, progress);
   return r;
 }
 
@@ -87,7 +87,7 @@ void run(const DesignOptions& o) {
     design::validate(s);
   }
   if (o.out.empty()) throw InvalidArgument("--out DIR is required: the directory the front is written to");
-  io::StagedDirectory staged(o.out);  // an unwritable --out fails here, before the search
+  io::StagedDirectory staged(o.out, {"design", "design.json"});  // a --out it may not replace fails here, before the search
   std::function<void(const design::Progress&)> progress;
   std::optional<ProgressPrinter> printer;
   if (!o.quiet && isatty(STDERR_FILENO)) {
@@ -143,7 +143,7 @@ void add_design_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml, design.json, front.svg, index.html "
                   "(swapped in whole)");
   cmd->add_option("--merge", o->merge, "Instead of a search: merge the fronts of these --out directories (shards of "
-                  "one search), timing every lobe again here")->expected(1, 10'000);
+                  "one search), measuring every lobe again here and timing it (unless --no-timing)")->expected(1, 10'000);
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on stderr");
   cmd->footer(
       "Fits each shape's constants per value of the range parameter for the largest error, gives\n"

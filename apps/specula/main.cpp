@@ -54,6 +54,7 @@ int run(int argc, char** argv) {
   specula::cli::add_report_command(app);
   specula::cli::add_bench_command(app);
   specula::cli::add_serve_command(app);
+  specula::cli::make_integer_options_strict(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -92,6 +92,18 @@ CLI (each run in a fresh, empty working directory, its max RSS from os.wait4):
                      SIGINTed 2-4 s in: exit 130 within 2 s, no file. Full run only; --long also
                      runs each to its end (--long), within 90 s (docs: lut 1.5 min, the others 82-106 s at a
                      load average of 7; "about a minute").
+design --merge (merge_cases.py; in part `specific`): forged shard files (a claimed error of 0,
+a NaN lobe, 81 or 10^6 members, /dev/zero, settings the CLI refuses, wrong JSON types, other zones)
+are refused in one line naming the file and key, or merged with every error measured again;
+--no-timing holds under --merge; a subnormal target designs and its files read back; targets the
+fits cannot take are refused at once; every models.toml written loads, the empty front's too.
+The designer (design_cases.py; part `design`): --out never replaces a folder of the user's files
+(the working directory, ".", "..", a link to one: exit 2 before any work, every file intact) and
+keeps a user's file put into an earlier output; strict integer options (--seed -1, 0x2, ' 2',
++0/4: exit 2); a hanging compiler (SPECULA_CXX) stopped by SIGINT/SIGTERM (130/143 within 3 s) or
+SIGKILL leaves no compiler process and no scratch folder (a killed run's goes with the next run),
+SPECULA_COMPILE_TIMEOUT bounds it, a missing SPECULA_CXX is exit 2 at once; a design job's status
+counts shapes while screening; a server stopped with a design compiling leaves nothing running.
 Server (`specula serve --port 0` on 127.0.0.1; a monitor GETs /api/models every 250 ms throughout):
   bad paths          Traversals (/%c0%ae%c0%ae/etc/passwd, ...), invalid UTF-8, very long and random
                      paths: no 5xx, never a system file, every error body JSON with "error".
@@ -143,6 +155,8 @@ import time
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
 
 import cli_cases  # noqa: E402  (after the line above)
+import design_cases  # noqa: E402
+import merge_cases  # noqa: E402
 import model_cases  # noqa: E402
 import proc  # noqa: E402
 import serve_cases  # noqa: E402
@@ -170,7 +184,8 @@ def arguments():
 
 
 # The parts --only chooses from: the CLI's (old, then new) and the server's.
-CLI_PARTS = ["malformed", "files", "specific", "outputs", "kills", "models", "ms", "exports", "report", "maxima"]
+CLI_PARTS = ["malformed", "files", "specific", "outputs", "kills", "models", "ms", "exports", "report", "maxima",
+             "design"]
 SERVE_PARTS = ["server", "defs"]
 PARTS = CLI_PARTS + SERVE_PARTS
 
@@ -211,6 +226,7 @@ def run_cli_groups(cli, quick, parts, long_checks=False):
     if "specific" in parts:
         cli_cases.group_specific(cli)
         model_cases.group_specific(cli)
+        merge_cases.group_merge(cli)
     if "outputs" in parts:
         cli_cases.group_outputs(cli)
         model_cases.group_outputs(cli)
@@ -226,6 +242,8 @@ def run_cli_groups(cli, quick, parts, long_checks=False):
         model_cases.group_ms(cli, budget_s=None, every=True)
     if "exports" in parts or "models" in parts or "ms" in parts:
         model_cases.group_exports(cli, budget_s=8 if quick else 24)
+    if "design" in parts:
+        design_cases.run_all(cli)
 
 
 def run_groups(args, root, summary):

@@ -28,15 +28,16 @@ ENDLESS_FIT = {"model": "log", "ops": "+", "max_size": 1, "time": 2}
 # ----------------------------------------------------------------------------- the server and its monitor
 
 class Server:
-    def __init__(self, specula, scratch, pre=()):
+    def __init__(self, specula, scratch, pre=(), env=None):
         self.specula, self.scratch, self.pre = specula, scratch, list(pre)  # pre: --models FILE ...
+        self.env = env  # None: the hostile run's own
         self.p = None
         self.addr = None
 
     def start(self, timeout=30.0):
         self.run = proc.Run(argv=[self.specula, "serve", "--port", "0"])
         self.p, out, err = proc.spawn([self.specula] + self.pre + ["serve", "--host", "127.0.0.1", "--port", "0"],
-                                      None, self.scratch)
+                                      None, self.scratch, env=self.env)
         self.files = (out, err)
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:

@@ -14,10 +14,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
+#include <unordered_set>
 
 #include "fitting.h"
 #include "laws.h"
 #include "native.h"
+#include "process.h"
 #include "shapes.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/interrupt/interrupt.h"
@@ -35,6 +37,7 @@ constexpr std::size_t kFineGrid = 17;    // … and the promising ones
 constexpr std::size_t kPerCost = 3;      // shapes kept per cost that do not improve the front
 constexpr double kKeepWithin = 1.5;      // … when within this factor of the front's best so far
 constexpr std::size_t kMaxCandidates = 40;
+static_assert(2 * kMaxCandidates <= Ranges::front_members, "a front (each candidate fitted for both objectives) is what --merge reads");
 constexpr std::size_t kChunk = 64;       // shapes screened between budget checks
 
 using Clock = std::chrono::steady_clock;
@@ -182,11 +185,10 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   std::vector<cost::FloatKernel> kernels;
   std::vector<std::pair<Lobe*, std::string>> timed;
   std::string note;
-  const auto work = std::filesystem::temp_directory_path() / fmt::format("specula-design-{}", getpid());
-  std::filesystem::create_directories(work);
+  const ScratchDirectory work;
   std::optional<NativeKernels> compiled;
   try {
-    compiled.emplace(natives, work, [&] { return stopper.cancelled(); });
+    compiled.emplace(natives, work.path(), [&] { return stopper.cancelled(); });
     for (std::size_t i = 0; i < natives.size(); ++i) {
       native_lobes[i]->ops = compiled->operations()[i];
       if (kernel_deviation(compiled->kernels()[i], natives[i]) > 1e-4) continue;  // not the formula: untimed
@@ -196,8 +198,9 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
     note = fmt::format("native kernels compiled by {} -O2 -march=native; built-ins by specula bench's kernels; "
                        "ns per value in cache, one core, float, at {} = {:g}",
                        native_compiler(), s.param, p);
+  } catch (const Interrupted&) {
+    throw;
   } catch (const std::runtime_error& e) {
-    if (stopper.cancelled()) throw;
     note = fmt::format("formula lobes not timed ({}): their cost is the cost model's", e.what());
   }
   for (Lobe* l : builtin_lobes) {
@@ -217,27 +220,20 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
       l->timing = timed[i].second;
     }
   }
-  compiled.reset();
-  std::error_code ignored;
-  std::filesystem::remove_all(work, ignored);
   return note;
 }
 
 // SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
 std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   const Settings& s = result.settings;
-  const auto work = std::filesystem::temp_directory_path() / fmt::format("specula-design-spirv-{}", getpid());
-  std::filesystem::create_directories(work);
+  const ScratchDirectory work("spirv");
   std::string why;
   const auto count = [&](Lobe& l) {
     if (!why.empty()) return;
-    if (const auto n = lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work, stop, why)) l.spirv_instructions = *n;
+    if (const auto n = lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work.path(), stop, why)) l.spirv_instructions = *n;
   };
   for (auto& l : result.front) count(l);
   for (auto& l : result.references) count(l);
-  std::error_code ignored;
-  std::filesystem::remove_all(work, ignored);
-  if (stop()) throw Interrupted(Interrupted::Reason::signal, stop_requested());
   return why.empty() ? "SPIR-V: instructions of the lobe beyond F = c's, glslangValidator -V (no optimizer)"
                      : "SPIR-V not counted: " + why;
 }
@@ -266,7 +262,12 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
     for (auto& m : members) all_lobes.push_back(&m);
     for (auto& r : result.references) all_lobes.push_back(&r);
     tell("timing", 0, static_cast<std::int64_t>(all_lobes.size()), nullptr);
-    result.cost_note = time_lobes(all_lobes, s, stopper);
+    try {
+      result.cost_note = time_lobes(all_lobes, s, stopper);
+    } catch (const Interrupted&) {
+      result.cancelled = true;
+      result.cost_note = "not timed (stopped): cost is the cost model's";
+    }
   } else {
     result.cost_note = "not timed: cost is the cost model's";
   }
@@ -283,9 +284,113 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
     } catch (const Interrupted&) {
       result.cancelled = true;
     }
+    if (stop()) result.cancelled = true;
   }
   result.seconds = stopper.seconds();
   tell("done", 1, 1, &result.front);
+}
+
+// The target on the probe at every value of the measurement's grid: finite, ≥ 0 and at most
+// Ranges::target_max, as the fits and the measurement need it.
+void validate_target_values(const Settings& s) {
+  for (double p : param_grid(s.lo, s.hi, kVerifyGrid)) {
+    const lobes::Lobe target = target_at(s, p).lobe();
+    for (double u : probe_log_cos()) {
+      const double v = lobes::at_log_cos(target, u);
+      if (std::isfinite(v) && v >= 0 && v <= Ranges::target_max) continue;
+      const std::string what = !std::isfinite(v) ? "not finite" : v < 0 ? "negative" : "too large";
+      throw InvalidField("target", fmt::format("the target '{}' is {} at c = {:.6g}, {} = {:.6g} ({:g}): a target must be "
+                                               "finite, ≥ 0 and at most {:g} for every c in (0, 1] over the range",
+                                               s.target, what, std::exp(-u), s.param, p, v, Ranges::target_max));
+    }
+  }
+}
+
+// Where a shard came from, for messages.
+std::string source_of(const Result& shard, std::size_t index) {
+  return shard.source.empty() ? fmt::format("shard {}", index + 1) : shard.source;
+}
+
+std::string params_text(const ParamValues& params) {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : params) out.push_back(fmt::format("{}={}", name, value));
+  return out.empty() ? std::string("none") : fmt::format("{}", fmt::join(out, ","));
+}
+
+// The settings that make shards one search, each as text at full precision.
+std::vector<std::pair<std::string_view, std::string>> search_keys(const Settings& s) {
+  return {{"target", s.target},
+          {"parameters", params_text(s.params)},
+          {"form", s.form ? to_string(*s.form) : "(the target's own)"},
+          {"range", fmt::format("{}={}:{}", s.param, s.lo, s.hi)},
+          {"objective", to_string(s.objective)},
+          {"zone", fmt::format("{}", s.zone)}};
+}
+
+// InvalidField "merge" naming the first setting on which a shard's search differs from the first
+// shard's, with both values.
+void check_one_search(const std::vector<Result>& shards) {
+  const auto first = search_keys(shards.front().settings);
+  for (std::size_t i = 1; i < shards.size(); ++i) {
+    const auto keys = search_keys(shards[i].settings);
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      if (keys[k].second != first[k].second)
+        throw InvalidField("merge", fmt::format("merge: {}: {} {} differs from {}'s {} {}: shards of one search share "
+                                                "their target, parameters, form, range, objective and zone",
+                                                source_of(shards[i], i), keys[k].first, keys[k].second,
+                                                source_of(shards.front(), 0), first[k].first, first[k].second));
+  }
+}
+
+// A member of the union, and where it was read.
+struct Merged {
+  Lobe lobe;
+  std::string origin;  // "FILE: 'members'[I]"
+};
+
+// Each member measured again over the whole domain as design() measures a finished lobe, the
+// claimed errors replaced. A member that is not finite somewhere, or whose objective error is not,
+// is refused (design() keeps no such lobe); those a stop cut short are left out (a measurement cut
+// short understates).
+template <class Tell>
+std::vector<Lobe> measured_again(std::vector<Merged> members, const Settings& s, const Stopper& stopper,
+                                 const Tell& tell) {
+  const auto stop = [&] { return stopper.cancelled(); };
+  std::vector<std::optional<DomainError>> measured(members.size());
+  std::mutex telling;
+  std::int64_t done = 0;
+  const auto total = static_cast<std::int64_t>(members.size());
+  tell("measuring members", 0, total, nullptr);
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t i) {
+      if (stop()) return;
+      try {
+        const DomainError e = domain_error(members[i].lobe, s, stop);
+        if (!stop()) measured[i] = e;
+      } catch (const Interrupted&) {
+        return;
+      }
+      const std::lock_guard lock(telling);
+      tell("measuring members", ++done, total, nullptr);
+    });
+  });
+  std::vector<Lobe> out;
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (!measured[i]) continue;
+    Lobe& l = members[i].lobe;
+    const DomainError& e = *measured[i];
+    if (!e.finite)
+      throw InvalidField("merge", fmt::format("merge: {}: the lobe '{}' is not finite at c = {:g}, {} = {:g}", members[i].origin,
+                                              l.formula, e.argmax_c, s.param, e.argmax_param));
+    set_errors(l, e);
+    if (!std::isfinite(objective_error(l, s.objective)))
+      throw InvalidField("merge", fmt::format("merge: {}: the lobe '{}' has no finite {} over the domain", members[i].origin,
+                                              l.formula, to_string(s.objective)));
+    l.ns_per_eval = NAN;  // timed again, beside the rest, on this machine
+    out.push_back(std::move(l));
+  }
+  return out;
 }
 
 }  // namespace
@@ -354,17 +459,22 @@ void validate(const Settings& s) {
   for (const auto& [name, value] : s.params)
     if (name == s.param) throw InvalidField("params", fmt::format("{} is the range parameter; give its range with --range", name));
   (void)target_at(s, s.lo);  // the other parameters are the target's and in range
+  validate_target_values(s);
+  if (s.measure_cost) {  // a compiler or time limit the user named but cannot have: said now, not after the search
+    (void)native_compiler();
+    (void)compile_limit();
+  }
 }
 
 Result design(const Settings& s, const std::function<void(const Progress&)>& progress) {
   validate(s);
   const Stopper stopper(s);
   const auto stop = [&] { return stopper.cancelled(); };
-  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
-    if (progress) progress({phase, done, total, front});
-  };
   Result result;
   result.settings = s;
+  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
+    if (progress) progress({phase, done, total, front, result.forms_screened, result.forms_total});
+  };
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
 
   // 1. The first max_forms shapes (all shards' together), this shard's share, screened on a few
@@ -376,6 +486,7 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   for (std::size_t i = 0; i < all.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);
   result.forms_total = static_cast<std::int64_t>(mine.size());
+  tell("screening shapes", 0, result.forms_total, nullptr);
   const std::vector<Samples> screen = samples_over(s, kScreenGrid);
   std::vector<Screened> screened;
   for (std::size_t first = 0; first < mine.size(); first += kChunk) {
@@ -444,37 +555,36 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   return result;
 }
 
-Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress) {
+Result merge(const std::vector<Result>& shards, const MergeOptions& options,
+             const std::function<void(const Progress&)>& progress) {
   if (shards.empty()) throw InvalidField("merge", "nothing to merge");
-  const Settings& first = shards.front().settings;
-  const auto same_problem = [&](const Settings& s) {
-    return s.target == first.target && s.params == first.params && s.form == first.form && s.param == first.param &&
-           s.lo == first.lo && s.hi == first.hi && s.objective == first.objective && s.zone == first.zone;
-  };
-  for (const auto& r : shards)
-    if (!same_problem(r.settings))
-      throw InvalidField("merge", fmt::format("the fronts were designed for different targets: {} over {} in [{:g}, {:g}] "
-                                              "and {} over {} in [{:g}, {:g}]",
-                                              first.target, first.param, first.lo, first.hi, r.settings.target,
-                                              r.settings.param, r.settings.lo, r.settings.hi));
+  check_one_search(shards);
   Result result;
-  result.settings = first;
+  result.settings = shards.front().settings;
   result.settings.shard = 0;
   result.settings.shards = 1;
+  result.settings.measure_cost = options.measure_cost;
+  result.settings.threads = options.threads;
+  result.settings.cancel = options.cancel;
+  validate(result.settings);
   const Stopper stopper(result.settings);
-  std::vector<Lobe> members;
-  for (const auto& r : shards) {
+  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
+    if (progress) progress({phase, done, total, front, result.forms_screened, result.forms_total});
+  };
+  std::vector<Merged> members;
+  std::unordered_set<std::string> formulas;
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    const Result& r = shards[i];
     result.forms_screened += r.forms_screened;
     result.forms_total += r.forms_total;
     result.cancelled |= r.cancelled;
-    for (const Lobe& m : r.front)
-      if (std::ranges::none_of(members, [&](const Lobe& x) { return x.formula == m.formula; })) members.push_back(m);
+    for (std::size_t j = 0; j < r.front.size(); ++j)
+      if (formulas.insert(r.front[j].formula).second)
+        members.push_back({r.front[j], fmt::format("{}: 'members'[{}]", source_of(r, i), j)});
   }
-  for (auto& m : members) m.ns_per_eval = NAN;  // timed again, beside the rest, on this machine
-  const auto tell = [&](std::string_view phase, std::int64_t done, std::int64_t total, const std::vector<Lobe>* front) {
-    if (progress) progress({phase, done, total, front});
-  };
-  finish_front(std::move(members), result, stopper, tell);
+  std::vector<Lobe> measured = measured_again(std::move(members), result.settings, stopper, tell);
+  result.cancelled |= stopper.cancelled();
+  finish_front(std::move(measured), result, stopper, tell);
   return result;
 }
 

@@ -3,6 +3,7 @@
 // page all evaluate.
 #include <cmath>
 #include <fmt/format.h>
+#include <numeric>
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/design/design.h"
@@ -11,7 +12,11 @@ namespace specula::design {
 
 bool log_spaced(double lo, double hi) { return lo > 0 && hi / lo >= 4; }
 
-double middle(double lo, double hi) { return log_spaced(lo, hi) ? std::sqrt(lo * hi) : (lo + hi) / 2; }
+double middle(double lo, double hi) {
+  if (!log_spaced(lo, hi)) return std::midpoint(lo, hi);
+  const double product = lo * hi;  // below the normal doubles (a subnormal range) or above them: √lo·√hi
+  return std::isnormal(product) ? std::sqrt(product) : std::sqrt(lo) * std::sqrt(hi);
+}
 
 double timing_param(const Settings& s) {
   if (s.lo <= 20 && 20 <= s.hi) return 20;

@@ -1,6 +1,6 @@
 #include "native.h"
 
-#include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -20,7 +20,6 @@ using expr::Op;
 
 namespace {
 
-constexpr std::chrono::seconds kCompileLimit{300};
 
 // A value of the formula while it is written out: a uniform (a scalar C++ expression in the
 // parameter p, computed once per call) or a vector expression in x (the cosine's lanes).
@@ -216,17 +215,31 @@ NativeSource native_source(const std::vector<NativeLobe>& lobes) {
 }
 
 std::string native_compiler() {
-  for (const char* candidate : std::array<const char*, 2>{std::getenv("SPECULA_CXX"), SPECULA_CXX}) {
-    if (!candidate || !*candidate) continue;
-    if (access(candidate, X_OK) == 0) return candidate;
-  }
-  return {};
+  const char* chosen = std::getenv("SPECULA_CXX");
+  if (!chosen || !*chosen) return find_executable(SPECULA_CXX).string();
+  const auto found = find_executable(chosen);
+  if (found.empty())
+    throw InvalidArgument(fmt::format("SPECULA_CXX names '{}', which is not an executable file{}", chosen,
+                                      std::string_view(chosen).find('/') == std::string_view::npos ? " in PATH" : ""));
+  return found.string();
+}
+
+std::chrono::seconds compile_limit() {
+  const char* text = std::getenv("SPECULA_COMPILE_TIMEOUT");
+  if (!text || !*text) return kDefaultCompileLimit;
+  const std::string_view value(text);
+  int seconds = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), seconds);
+  if (error != std::errc{} || end != value.data() + value.size() || seconds < 1 || seconds > kMaxCompileLimit.count())
+    throw InvalidArgument(fmt::format("SPECULA_COMPILE_TIMEOUT must be a whole number of seconds in [1, {}], got '{}'",
+                                      kMaxCompileLimit.count(), value));
+  return std::chrono::seconds(seconds);
 }
 
 NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::filesystem::path& work_dir,
                              const std::function<bool()>& stop) {
   const std::string compiler = native_compiler();
-  if (compiler.empty()) throw std::runtime_error("no C++ compiler found (SPECULA_CXX or " SPECULA_CXX ")");
+  if (compiler.empty()) throw std::runtime_error("no C++ compiler found (SPECULA_CXX unset, and no " SPECULA_CXX ")");
   const NativeSource source = native_source(lobes);
   const auto cpp = work_dir / "lobes.cpp", so = work_dir / "lobes.so", log = work_dir / "compile.log";
   std::ofstream(cpp) << source.text;
@@ -236,7 +249,7 @@ NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::fi
   // 12's Highway 1.0.3 on AVX-512 CPUs with VBMI2/VNNI/BITALG, e.g. AMD Zen 4).
   const int status = run_process({compiler, "-std=gnu++20", "-O2", "-march=native", "-DHWY_COMPILE_ONLY_STATIC=1",
                                   "-fPIC", "-shared", "-o", so.string(), cpp.string()},
-                                 log, stop, kCompileLimit);
+                                 log, stop, compile_limit());
   if (status != 0) throw std::runtime_error(fmt::format("compiling the kernels failed: {}", first_error(log)));
   library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!library_) throw std::runtime_error(fmt::format("loading the kernels failed: {}", dlerror()));

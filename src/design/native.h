@@ -4,6 +4,7 @@
 // subexpressions computed once per call as a shader's uniforms are), compiled at run time by the
 // compiler that built specula into a shared object, loaded, checked against the formula, and
 // timed in the benchmark's harness (cost::time_in_cache) beside the built-in lobes' kernels.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -29,15 +30,23 @@ struct NativeSource {
 };
 NativeSource native_source(const std::vector<NativeLobe>& lobes);
 
-/// The compiler: $SPECULA_CXX if set, else the one that built specula; empty if neither runs.
+/// The compiler: $SPECULA_CXX if set (a path, or a name looked up in PATH; InvalidArgument if it
+/// names no executable file: a compiler the user chose is never replaced by another), else the
+/// one that built specula; empty if that one is gone.
 std::string native_compiler();
+
+/// How long a compilation may take: $SPECULA_COMPILE_TIMEOUT seconds if set (a whole number in
+/// [1, 3600]; InvalidArgument otherwise), else 180 s. A compiler that runs longer is killed, with
+/// everything it started, and the formula lobes keep the cost model's cost.
+inline constexpr std::chrono::seconds kDefaultCompileLimit{180}, kMaxCompileLimit{3600};
+std::chrono::seconds compile_limit();
 
 /// Compiled and loaded kernels, in the order of the lobes (each valid while this lives).
 class NativeKernels {
  public:
   /// Compiles `lobes` in `work_dir` (which must exist). Throws std::runtime_error with the
-  /// compiler's first error line if the compilation fails or takes over 5 minutes, or if `stop`
-  /// says so meanwhile.
+  /// compiler's first error line if the compilation fails or takes over compile_limit(), and
+  /// Interrupted if `stop` says so meanwhile.
   NativeKernels(const std::vector<NativeLobe>& lobes, const std::filesystem::path& work_dir,
                 const std::function<bool()>& stop);
   ~NativeKernels();

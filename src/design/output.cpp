@@ -1,7 +1,9 @@
 #include "specula/design/output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "specula/catalogue/catalogue.h"
@@ -11,6 +13,8 @@
 namespace specula::design {
 
 namespace {
+
+using Json = nlohmann::json;
 
 // Full precision: a rounded maximum could understate it.
 std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.17g}", v) : std::string(); }
@@ -58,6 +62,166 @@ std::string shown(const Lobe& l) {
   return expr::to_infix(fit::rounded(expr::parse(l.formula), 6));
 }
 
+// design.json as --merge reads it back: each key of its type, each setting validated as the CLI
+// validates it, each claim possible; every failure one line naming the file and the key, as
+// "merge: FILE: 'members'[3].'formula' must be a string".
+class DesignReader {
+ public:
+  explicit DesignReader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(std::string_view key, std::string_view message) const {
+    throw InvalidField("merge", fmt::format("merge: {}: {}{}{}", file_, key, key.empty() ? "" : " ", message));
+  }
+
+  Result result(const Json& j) const {
+    if (!j.is_object()) fail("", "must hold a JSON object");
+    Result r;
+    r.settings = settings(j);
+    r.forms_total = count(j, "forms_total");
+    r.forms_screened = count(j, "forms_screened");
+    if (r.forms_screened > r.forms_total)
+      fail("'forms_screened'", fmt::format("({}) is more than 'forms_total' ({})", r.forms_screened, r.forms_total));
+    r.cancelled = flag(j, "stopped");
+    const Json& members = value(j, "", "members");
+    if (!members.is_array()) fail("'members'", "must be an array");
+    if (members.size() > Ranges::front_members)
+      fail("'members'", fmt::format("holds {} members: a front has at most {}", members.size(), Ranges::front_members));
+    for (std::size_t i = 0; i < members.size(); ++i) r.front.push_back(member(members[i], fmt::format("'members'[{}].", i), r.settings));
+    return r;
+  }
+
+ private:
+  std::string file_;
+
+  const Json& value(const Json& object, std::string_view prefix, std::string_view key) const {
+    const auto found = object.find(key);
+    if (found == object.end()) fail(fmt::format("{}'{}'", prefix, key), "is missing");
+    return *found;
+  }
+
+  std::string text(const Json& object, std::string_view key, std::string_view prefix = "") const {
+    const Json& v = value(object, prefix, key);
+    if (!v.is_string()) fail(fmt::format("{}'{}'", prefix, key), "must be a string");
+    return v.get<std::string>();
+  }
+
+  double number(const Json& object, std::string_view key, std::string_view prefix = "") const {
+    const Json& v = value(object, prefix, key);
+    if (!v.is_number() || !std::isfinite(v.get<double>())) fail(fmt::format("{}'{}'", prefix, key), "must be a finite number");
+    return v.get<double>();
+  }
+
+  // An integer that an int holds; its documented range is validate()'s to check.
+  int small_integer(const Json& object, std::string_view key) const {
+    const Json& v = value(object, "", key);
+    if (!v.is_number_integer() || v.get<double>() < std::numeric_limits<int>::min() ||
+        v.get<double>() > std::numeric_limits<int>::max())
+      fail(fmt::format("'{}'", key), "must be an integer");
+    return v.get<int>();
+  }
+
+  std::int64_t count(const Json& object, std::string_view key) const {
+    const Json& v = value(object, "", key);
+    if (!v.is_number_integer() || v.get<double>() < 0 || v.get<double>() > static_cast<double>(Ranges::forms))
+      fail(fmt::format("'{}'", key), fmt::format("must be an integer in [0, {}]", Ranges::forms));
+    return v.get<std::int64_t>();
+  }
+
+  bool flag(const Json& object, std::string_view key) const {
+    const Json& v = value(object, "", key);
+    if (!v.is_boolean()) fail(fmt::format("'{}'", key), "must be true or false");
+    return v.get<bool>();
+  }
+
+  // A claimed error: a number ≥ 0, or null where it is not finite (JSON has no inf).
+  double error(const Json& object, std::string_view key, std::string_view prefix) const {
+    const Json& v = value(object, prefix, key);
+    if (v.is_null()) return INFINITY;
+    if (!v.is_number() || !(v.get<double>() >= 0))
+      fail(fmt::format("{}'{}'", prefix, key), "must be a number ≥ 0 (or null: not finite)");
+    return v.get<double>();
+  }
+
+  // Wraps what a named parser or validate() throws, naming the key.
+  template <class Parse>
+  auto parsed(std::string_view key, const Parse& parse) const {
+    try {
+      return parse();
+    } catch (const InvalidArgument& e) {
+      fail(key, e.what());
+    }
+  }
+
+  Settings settings(const Json& j) const {
+    Settings s;
+    s.target = text(j, "target");
+    const Json& params = value(j, "", "params");
+    if (!params.is_object()) fail("'params'", "must be an object of numbers");
+    for (const auto& [name, v] : params.items()) s.params[name] = number(params, name, "'params'.");
+    const std::string form = text(j, "form");
+    if (!form.empty()) s.form = parsed("'form':", [&] { return parse_form(form); });
+    s.param = text(j, "param");
+    s.lo = number(j, "lo");
+    s.hi = number(j, "hi");
+    const std::string objective = text(j, "objective");
+    s.objective = parsed("", [&] {
+      return choice_named<Objective, kObjectiveCount>("objective", objective, Spelling::key);
+    });
+    s.zone = number(j, "zone");
+    s.operations = operations(j);
+    s.max_cost = small_integer(j, "max_cost");
+    const Json& seed = value(j, "", "seed");
+    if (!seed.is_number_unsigned()) fail("'seed'", "must be an unsigned integer");
+    s.seed = seed.get<std::uint64_t>();
+    s.shard = small_integer(j, "shard");
+    s.shards = small_integer(j, "shards");
+    s.measure_cost = false;  // a merge's timing is its own (MergeOptions), not the shard's
+    parsed("", [&] { validate(s); });
+    return s;
+  }
+
+  std::vector<Operation> operations(const Json& j) const {
+    const Json& ops = value(j, "", "ops");
+    if (!ops.is_array()) fail("'ops'", "must be an array of operation names");
+    std::vector<Operation> out;
+    for (std::size_t i = 0; i < ops.size(); ++i) {
+      const std::string key = fmt::format("'ops'[{}]", i);
+      if (!ops[i].is_string()) fail(key, "must be a string");
+      for (Operation op : parsed(key + ":", [&] { return parse_operations(ops[i].get<std::string>()); }))
+        if (std::ranges::find(out, op) == out.end()) out.push_back(op);
+    }
+    return out;
+  }
+
+  Lobe member(const Json& m, const std::string& prefix, const Settings& s) const {
+    const std::string_view where = std::string_view(prefix).substr(0, prefix.size() - 1);
+    if (!m.is_object()) fail(where, "must be an object");
+    Lobe l;
+    l.id = text(m, "id", prefix);
+    l.formula = text(m, "formula", prefix);
+    l.shape = text(m, "shape", prefix);
+    l.max_abs = error(m, "max_abs", prefix);
+    l.max_rel = error(m, "max_rel", prefix);
+    const char* kept = s.objective == Objective::max_rel ? "max_rel" : "max_abs";  // what the search keeps finite
+    if (!std::isfinite(s.objective == Objective::max_rel ? l.max_rel : l.max_abs))
+      fail(fmt::format("{}'{}'", prefix, kept), fmt::format("must be finite: a front keeps no lobe whose {} is not", kept));
+    l.argmax_c = number(m, "argmax_c", prefix);
+    l.argmax_param = number(m, "argmax_param", prefix);
+    if (!(std::abs(l.argmax_c) <= 1)) fail(fmt::format("{}'argmax_c'", prefix), "must be a cosine, in [-1, 1]");
+    if (!(l.argmax_param >= s.lo && l.argmax_param <= s.hi))
+      fail(fmt::format("{}'argmax_param'", prefix), fmt::format("must be in the range [{}, {}]", s.lo, s.hi));
+    const Json& cost = value(m, prefix, "model_cost");
+    if (!cost.is_number_integer() || cost.get<double>() < 0 || cost.get<double>() > s.max_cost)
+      fail(fmt::format("{}'model_cost'", prefix), fmt::format("must be an integer in [0, max_cost = {}]", s.max_cost));
+    l.model_cost = cost.get<int>();
+    parsed(fmt::format("{}'formula':", prefix), [&] {
+      (void)expr::parse(l.formula, {"c", s.param});  // a formula in c and the parameter
+      (void)lobe_at(l, s);                            // … that is a lobe model
+    });
+    return l;
+  }
+};
+
 }  // namespace
 
 std::string front_csv(const Result& result) {
@@ -88,6 +252,7 @@ std::string models_toml(const Result& result) {
   const Settings& s = result.settings;
   std::string out = fmt::format("# Lobes designed by specula design against {} over {} in [{:g}, {:g}] ({}).\n",
                                 s.target, s.param, s.lo, s.hi, to_string(s.objective));
+  if (result.front.empty()) return out + "\nmodel = []  # the front is empty: no lobe was finished\n";
   for (const auto& l : result.front) {
     for (bool normalized : {false, true}) {
       const MemberModel m = member_model(result, l, normalized);
@@ -140,46 +305,21 @@ std::string design_json(const Result& result) {
 
 Result read_design(const std::filesystem::path& dir) {
   const auto path = dir / "design.json";
+  std::string text;
   try {
-    const nlohmann::json j = nlohmann::json::parse(io::read_file(path));
-    Result r;
-    Settings& s = r.settings;
-    s.target = j.at("target").get<std::string>();
-    for (const auto& [name, value] : j.at("params").items()) s.params[name] = value.get<double>();
-    const std::string form = j.at("form").get<std::string>();
-    if (!form.empty()) s.form = form_named(form);
-    s.param = j.at("param").get<std::string>();
-    s.lo = j.at("lo").get<double>();
-    s.hi = j.at("hi").get<double>();
-    const auto objective = objective_named(j.at("objective").get<std::string>());
-    if (!objective) throw InvalidArgument("unknown objective");
-    s.objective = *objective;
-    s.zone = j.at("zone").get<double>();
-    s.max_cost = j.at("max_cost").get<int>();
-    s.seed = j.at("seed").get<std::uint64_t>();
-    s.shard = j.at("shard").get<int>();
-    s.shards = j.at("shards").get<int>();
-    r.forms_screened = j.at("forms_screened").get<std::int64_t>();
-    r.forms_total = j.at("forms_total").get<std::int64_t>();
-    r.cancelled = j.at("stopped").get<bool>();
-    validate(s);
-    for (const auto& m : j.at("members")) {
-      Lobe l;
-      l.id = m.at("id").get<std::string>();
-      l.formula = m.at("formula").get<std::string>();
-      l.shape = m.at("shape").get<std::string>();
-      l.max_abs = m.at("max_abs").get<double>();
-      l.argmax_c = m.at("argmax_c").get<double>();
-      l.argmax_param = m.at("argmax_param").get<double>();
-      l.max_rel = m.at("max_rel").get<double>();
-      l.model_cost = m.at("model_cost").get<int>();
-      (void)expr::parse(l.formula, {"c", s.param});  // a formula in c and the parameter
-      r.front.push_back(std::move(l));
-    }
-    return r;
-  } catch (const std::exception& e) {
-    throw InvalidField("merge", fmt::format("{}: {}", path.string(), e.what()));
+    text = io::read_file(path, Ranges::design_json_bytes);
+  } catch (const InvalidArgument& e) {
+    throw InvalidField("merge", fmt::format("merge: {}", e.what()));
   }
+  const DesignReader reader(path.string());
+  Result r;
+  try {
+    r = reader.result(nlohmann::json::parse(text));
+  } catch (const nlohmann::json::parse_error& e) {
+    reader.fail("", fmt::format("not JSON (at byte {})", e.byte));
+  }
+  r.source = path.string();
+  return r;
 }
 
 void write_files(const Result& result, const std::filesystem::path& dir) {

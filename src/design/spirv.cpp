@@ -11,6 +11,7 @@
 #include "process.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/glsl/glsl.h"
+#include "specula/interrupt/interrupt.h"
 #include "specula/io/files.h"
 
 namespace specula::design {
@@ -42,6 +43,8 @@ std::optional<int> shader_instructions(const Model& m, const std::filesystem::pa
   try {
     status = run_process({"glslangValidator", "-V", "-o", binary.string(), source.string()}, log, stop,
                          std::chrono::seconds(60));
+  } catch (const Interrupted&) {
+    throw;
   } catch (const std::runtime_error& e) {
     why = e.what();
     return std::nullopt;

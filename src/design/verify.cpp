@@ -1,6 +1,7 @@
 #include "verify.h"
 
 #include <cmath>
+#include <optional>
 
 #include "fitting.h"
 #include "specula/analysis/error.h"
@@ -12,14 +13,29 @@ namespace specula::design {
 namespace {
 
 constexpr int kRefineSteps = 40;
+constexpr int kProbeEven = 256, kProbeNear = 64;     // points of the probe: even in c, and in u near the peak
+constexpr double kProbeNearEnd = 40;                 // … up to this u (the error's own end)
+constexpr double kSmallestLogCos = 745;              // c = 5e-324: the fits' last row
 
 struct AtParam {
   double param;
   analysis::ApproximationError error;
+  std::optional<double> not_finite_u;  // a point of the probe where the lobe is not finite
 };
 
+std::optional<double> non_finite_point(const lobes::Lobe& lobe) {
+  for (double u : probe_log_cos())
+    if (!std::isfinite(lobes::at_log_cos(lobe, u))) return u;
+  return std::nullopt;
+}
+
 AtParam error_at(const std::function<Model(double)>& lobe_at, const Settings& s, double p) {
-  return {p, analysis::approximation_error(lobe_at(p).lobe(), target_at(s, p).lobe(), s.zone)};
+  const lobes::Lobe lobe = lobe_at(p).lobe();
+  return {p, analysis::approximation_error(lobe, target_at(s, p).lobe(), s.zone), non_finite_point(lobe)};
+}
+
+DomainError not_finite_at(const AtParam& x) {
+  return {INFINITY, std::exp(-*x.not_finite_u), x.param, INFINITY, x.param, false};
 }
 
 // Golden-section search for the largest `value` on [a, b] in t = log p (or p), from the best
@@ -53,6 +69,20 @@ AtParam refine(const std::function<Model(double)>& lobe_at, const Settings& s, d
 
 }  // namespace
 
+const std::vector<double>& probe_log_cos() {
+  static const std::vector<double> points = [] {
+    std::vector<double> u;
+    for (int i = 1; i <= kProbeEven; ++i) u.push_back(-std::log(static_cast<double>(i) / kProbeEven));
+    for (int j = 0; j <= kProbeNear; ++j) {
+      const double t = static_cast<double>(j) / kProbeNear;
+      u.push_back(kProbeNearEnd * t * t);
+    }
+    u.push_back(kSmallestLogCos);
+    return u;
+  }();
+  return points;
+}
+
 DomainError domain_error(const Lobe& l, const Settings& s, const std::function<bool()>& stop) {
   const std::function<Model(double)> lobe_at = design::lobe_at(l, s);
   const std::vector<double> grid = param_grid(s.lo, s.hi, kVerifyGrid);
@@ -63,8 +93,10 @@ DomainError domain_error(const Lobe& l, const Settings& s, const std::function<b
   }
   DomainError out;
   if (at.empty()) return out;
-  const auto abs_of = [](const AtParam& x) { return x.error.max_abs; };
-  const auto rel_of = [](const AtParam& x) { return x.error.max_rel_epicenter; };
+  for (const AtParam& x : at)
+    if (x.not_finite_u) return not_finite_at(x);
+  const auto abs_of = [](const AtParam& x) { return x.not_finite_u ? INFINITY : x.error.max_abs; };
+  const auto rel_of = [](const AtParam& x) { return x.not_finite_u ? INFINITY : x.error.max_rel_epicenter; };
   const auto worst = [&](auto value) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < at.size(); ++i)
@@ -73,6 +105,8 @@ DomainError domain_error(const Lobe& l, const Settings& s, const std::function<b
     return a < b ? refine(lobe_at, s, a, b, at[best], value, stop) : at[best];
   };
   const AtParam abs = worst(abs_of), rel = worst(rel_of);
+  for (const AtParam& x : {abs, rel})
+    if (x.not_finite_u) return not_finite_at(x);
   out.max_abs = abs.error.max_abs;
   out.argmax_c = std::cos(abs.error.argmax_abs_deg * std::numbers::pi / 180);
   out.argmax_param = abs.param;

@@ -1,5 +1,6 @@
 // Parsing of the search's options, the error metrics, and the choice of a formula from a front.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <numeric>
@@ -236,6 +237,15 @@ std::size_t knee(const std::vector<Candidate>& front, const auto& ranking_error)
   return best;
 }
 
+// v to `digits` significant digits, read back by from_chars: a subnormal stays one (stod throws
+// on it); a rounding past the largest double (1.8e308 to 1 digit) keeps v.
+double rounded_to(double v, int digits) {
+  const std::string text = fmt::format("{:.{}g}", v, digits);
+  double out = v;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc{} && end == text.data() + text.size() ? out : v;
+}
+
 }  // namespace
 
 std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice, double factor,
@@ -258,7 +268,7 @@ std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice ch
 expr::Expression rounded(const expr::Expression& e, int digits) {
   std::vector<expr::Node> nodes(e.nodes().begin(), e.nodes().end());
   for (auto& n : nodes)
-    if (n.op == Op::constant && !expr::is_exact(n)) n.value = std::stod(fmt::format("{:.{}g}", n.value, digits));
+    if (n.op == Op::constant && !expr::is_exact(n)) n.value = rounded_to(n.value, digits);
   return expr::Expression(std::move(nodes), e.variables());
 }
 

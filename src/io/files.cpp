@@ -1,5 +1,6 @@
 #include "specula/io/files.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -7,6 +8,9 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <fmt/format.h>
+#include <fstream>
+#include <optional>
+#include <set>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -179,38 +183,131 @@ void remove_stale_staging(const fs::path& target) {
 
 }  // namespace
 
-StagedDirectory::StagedDirectory(const fs::path& target) {
-  if (target.empty()) cannot("write", target, "empty directory name");
+namespace {
+
+/// `target` absolute, its symbolic links resolved, without "." or ".." or a final '/'.
+fs::path normalized(const fs::path& target) {
   std::error_code ec;
-  target_ = fs::absolute(target, ec);
-  struct stat info {};
-  if (!ec && ::lstat(target_.c_str(), &info) == 0) {
-    if (S_ISLNK(info.st_mode)) target_ = fs::canonical(target_, ec);
-    if (!ec && !fs::is_directory(target_, ec)) cannot("write", target, "it is not a directory");
-  }
+  fs::path path = fs::absolute(target, ec);
   if (ec) cannot("write", target, ec.message());
-  if (!fs::is_directory(target_.parent_path()) && !fs::create_directories(target_.parent_path(), ec))
+  struct stat link {};
+  const fs::path unslashed = path.filename().empty() ? path.parent_path() : path;
+  if (::lstat(unslashed.c_str(), &link) == 0 && S_ISLNK(link.st_mode) && !fs::exists(unslashed, ec))
+    cannot("write", target, "it is a symbolic link to a missing directory");
+  path = fs::weakly_canonical(path, ec);
+  if (ec) cannot("write", target, ec.message());
+  while (path.filename().empty() && path != path.root_path()) path = path.parent_path();
+  return path;
+}
+
+/// The names a manifest lists, if `dir` has one of `command`'s; nullopt if it has none.
+std::optional<std::set<std::string>> manifest_names(const fs::path& dir, std::string_view command, bool& other_command) {
+  other_command = false;
+  std::ifstream in(dir / kManifestName);
+  if (!in) return std::nullopt;
+  std::string line;
+  if (!std::getline(in, line) || line != fmt::format("specula {}", command)) {
+    other_command = true;
+    return std::nullopt;
+  }
+  std::set<std::string> names;
+  while (std::getline(in, line))
+    if (!line.empty()) names.insert(line);
+  return names;
+}
+
+/// Refuses a target that a new output may not replace (StagedDirectory's rules).
+void check_replaceable(const fs::path& target, const fs::path& requested, OutputKind kind) {
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec) {
+    const auto [t, c] = std::ranges::mismatch(target, cwd);
+    if (t == target.end())
+      cannot("write", requested, "it is the working directory or holds it; name a new directory for the output");
+  }
+  if (!fs::exists(target, ec)) return;
+  if (!fs::is_directory(target, ec)) cannot("write", requested, "it is not a directory");
+  if (fs::is_empty(target, ec)) return;
+  bool other_command = false;
+  if (manifest_names(target, kind.command, other_command)) return;
+  if (other_command) cannot("write", requested, fmt::format("it holds another command's output, not `specula {}`'s", kind.command));
+  if (fs::exists(target / kind.marker, ec)) return;
+  cannot("write", requested,
+         fmt::format("it is not empty and not an earlier output of `specula {}` (no {} or {}); name a new or empty "
+                     "directory: specula never replaces files it did not write",
+                     kind.command, kManifestName, kind.marker));
+}
+
+/// Moves the entries of `from` that specula did not write (not in `written`; all of them for an
+/// output from before manifests) and that `to` does not hold into `to`.
+void carry_user_files(const fs::path& from, const fs::path& to, const std::optional<std::set<std::string>>& written) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(from, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name == kManifestName || (written && written->contains(name))) continue;
+    if (::access((to / name).c_str(), F_OK) == 0 || errno != ENOENT) continue;
+    if (::rename(entry.path().c_str(), (to / name).c_str()) != 0)
+      cannot("write", to, fmt::format("keeping '{}' failed: {}", entry.path().string(), std::strerror(errno)));
+  }
+}
+
+void write_manifest(const fs::path& dir, std::string_view command) {
+  std::set<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) names.insert(entry.path().filename().string());
+  if (ec) cannot("write", dir, ec.message());
+  std::string text = fmt::format("specula {}\n", command);
+  for (const auto& name : names) text += name + "\n";
+  write_file_atomically(dir / kManifestName, text);
+}
+
+}  // namespace
+
+StagedDirectory::StagedDirectory(const fs::path& target, OutputKind kind) : command_(kind.command) {
+  if (target.empty()) cannot("write", target, "empty directory name");
+  target_ = normalized(target);
+  check_replaceable(target_, target, kind);
+  std::error_code ec;
+  for (fs::path p = target_.parent_path(); !fs::exists(p, ec) && p != p.root_path(); p = p.parent_path())
+    created_.insert(created_.begin(), p);
+  if (!created_.empty() && !fs::create_directories(target_.parent_path(), ec)) {
+    created_.clear();
     cannot("write", target, ec.message());
+  }
   remove_stale_staging(target_);
   staging_ = target_.parent_path() / fmt::format("{}{}", staging_prefix(target_), ::getpid());
   fs::remove_all(staging_, ec);
-  if (::mkdir(staging_.c_str(), 0777) != 0) cannot("write", target, std::strerror(errno));
+  if (::mkdir(staging_.c_str(), 0777) != 0) {
+    const int error = errno;
+    discard();
+    cannot("write", target, std::strerror(error));
+  }
 }
 
-StagedDirectory::~StagedDirectory() {
+StagedDirectory::~StagedDirectory() { discard(); }
+
+void StagedDirectory::discard() noexcept {
   std::error_code ignored;
   fs::remove_all(staging_, ignored);  // uncommitted: the new files; committed: the old directory
+  if (committed_) return;
+  for (auto p = created_.rbegin(); p != created_.rend(); ++p) fs::remove(*p, ignored);  // each only if empty
+  created_.clear();
 }
 
 void StagedDirectory::commit() {
   if (committed_) return;
   check_interrupt();
   std::error_code ec;
-  const int swapped = fs::is_directory(target_, ec)
-                          ? ::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE)
-                          : ::rename(staging_.c_str(), target_.c_str());
+  write_manifest(staging_, command_);
+  const bool replacing = fs::is_directory(target_, ec);
+  bool other_command = false;
+  const auto written = replacing ? manifest_names(target_, command_, other_command) : std::nullopt;
+  if (replacing) carry_user_files(target_, staging_, written);
+  const int swapped = replacing ? ::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE)
+                                : ::rename(staging_.c_str(), target_.c_str());
   if (swapped != 0) cannot("write", target_, std::strerror(errno));
   committed_ = true;
+  if (replacing) carry_user_files(staging_, target_, written);  // any the user added during the swap
 }
 
 }  // namespace specula::io

@@ -46,10 +46,19 @@ std::string member_glsl(const design::Result& r, const design::Lobe& l) {
 
 namespace {
 
-// The front chart, or what stands for it when no lobe was finished.
+// The front chart, or what stands for it when no lobe was finished or none can be drawn on its
+// log axes (a cost or an error of 0: the lobe F = c costs 0 in the cost model).
 std::string front_figure(const design::Result& r) {
   if (r.front.empty()) return "<p>No lobe was finished: nothing to draw (a longer <code>--time</code> screens shapes).</p>";
-  return to_svg(design_front_chart(r));
+  const Chart chart = design_front_chart(r);
+  if (!has_points(chart)) return "<p>No member has a cost and an error above 0: nothing to draw on log axes.</p>";
+  return to_svg(chart);
+}
+
+// A member's error chart, or a note where it has no finite point.
+std::string error_figure(const design::Result& r, const design::Lobe& member) {
+  const Chart chart = design_error_chart(r, member);
+  return has_points(chart) ? to_svg(chart) : "<p>|F − target| is nowhere finite: nothing to draw.</p>";
 }
 
 }  // namespace
@@ -127,7 +136,7 @@ std::string design_page(const design::Result& r) {
         xml_escape(l.id), xml_escape(l.formula), xml_escape(s.target), show(l.max_abs, 6), show(l.argmax_c, 6),
         xml_escape(s.param), show(l.argmax_param, 6), s.zone, show(l.max_rel, 6), show(design::timing_param(s), 4),
         show(l.k, 6), xml_escape(fmt::format("{:g}", fmt::join(design::check_params(s), ", "))),
-        xml_escape(l.check), to_svg(design_error_chart(r, l)), xml_escape(member_glsl(r, l)),
+        xml_escape(l.check), error_figure(r, l), xml_escape(member_glsl(r, l)),
         l.k_formula.empty() ? std::string("by quadrature")
                             : "in closed form, k(" + xml_escape(s.param) + ") = <code>" + xml_escape(l.k_formula) + "</code>");
   }
@@ -154,9 +163,10 @@ design.json, front.svg, front.png. Load the lobes in any command with <code>--mo
 }
 
 void write_design_pictures(const design::Result& r, const std::filesystem::path& dir) {
-  if (!r.front.empty()) {  // no lobe finished (a --time spent before any): no front to draw
-    io::write_file_atomically(dir / "front.svg", to_svg(design_front_chart(r)));
-    render::write_png(dir / "front.png", to_image(design_front_chart(r)), {{"Software", "specula design"}});
+  const Chart front = design_front_chart(r);
+  if (has_points(front)) {  // else no lobe finished (a --time spent before any), or none drawable: no front to draw
+    io::write_file_atomically(dir / "front.svg", to_svg(front));
+    render::write_png(dir / "front.png", to_image(front), {{"Software", "specula design"}});
   }
   io::write_file_atomically(dir / "index.html", design_page(r));
 }

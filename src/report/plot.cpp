@@ -107,7 +107,7 @@ class AxisMap {
 std::pair<double, double> data_range(const Chart& chart, bool x_axis) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& s : chart.series)
-    for (std::size_t i = 0; i < s.x.size(); ++i)
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
       if (usable(s.x[i], chart.x.scale) && usable(s.y[i], chart.y.scale)) {
         const double v = x_axis ? s.x[i] : s.y[i];
         lo = std::min(lo, v);
@@ -115,6 +115,15 @@ std::pair<double, double> data_range(const Chart& chart, bool x_axis) {
       }
   return {lo, hi};
 }
+
+}  // namespace
+
+bool has_points(const Chart& chart) {
+  const auto [lo, hi] = data_range(chart, true);
+  return lo <= hi;
+}
+
+namespace {
 
 void validate(const Chart& chart) {
   for (const auto& s : chart.series) {
@@ -125,8 +134,7 @@ void validate(const Chart& chart) {
       throw InvalidArgument(fmt::format("chart '{}': series '{}' has {} points and {} labels", chart.title, s.name,
                                         s.x.size(), s.point_labels.size()));
   }
-  const auto [lo, hi] = data_range(chart, true);
-  if (!(lo <= hi)) throw InvalidArgument(fmt::format("chart '{}' has no point to draw", chart.title));
+  if (!has_points(chart)) throw InvalidArgument(fmt::format("chart '{}' has no point to draw", chart.title));
 }
 
 std::string svg_open(int width, int height, const std::string& title) {

@@ -60,7 +60,7 @@ this page. Every number is computed by specula at report time; the paper's own n
 }  // namespace
 
 void write_report(const Options& requested) {
-  io::StagedDirectory out(requested.out_dir);
+  io::StagedDirectory out(requested.out_dir, {"report", "fig5-normalization.csv"});
   Options options = requested;
   options.out_dir = out.path();
   const auto start = std::chrono::steady_clock::now();

@@ -46,6 +46,8 @@ struct DesignJob final : Job {
       phase = p.phase;
       done = p.done;
       total = p.total;
+      result.forms_screened = p.forms_screened;
+      result.forms_total = p.forms_total;
       if (p.front) {
         result.front = *p.front;
         for (std::size_t i = 0; i < result.front.size(); ++i)

@@ -191,6 +191,47 @@ TEST_F(Cli, SigintStopsTheWorkOfAUserModelItself) {
 
 }  // namespace
 
+// ---- design: --out never replaces what specula did not write; integers are strict -------------
+
+TEST_F(Cli, DesignRefusesAnOutHoldingOtherFilesBeforeAnyWorkAndKeepsAUsersFile) {
+  const fs::path user = work() / "user";
+  fs::create_directory(user);
+  std::ofstream(user / "thesis.tex") << "years of work\n";
+  const std::vector<std::string> tiny{"design", "-q", "--no-timing", "--max-cost", "1", "--ops", "fma,max", "--range", "n=1:10"};
+  const auto with_out = [&](const std::string& out) {
+    auto args = tiny;
+    args.insert(args.end(), {"--out", out});
+    return args;
+  };
+  for (const std::string& out : {user.string(), user.string() + "/", (user / ".").string(), (user / "x" / "..").string()})
+    EXPECT_THAT(bad(with_out(out)).err, HasSubstr("not an earlier output of `specula design`")) << out;
+  EXPECT_THAT(bad(with_out(fs::current_path().string())).err, HasSubstr("working directory"));  // specula's, as the test's
+  EXPECT_THAT(bad(with_out(".")).err, HasSubstr("working directory"));
+  EXPECT_EQ(specula::testing::read_file(user / "thesis.tex"), "years of work\n");
+  // The controls: a new directory given with a final '/', and a user's file in it kept by the next run.
+  EXPECT_EQ(run(with_out((work() / "front").string() + "/")).code, 0);
+  EXPECT_TRUE(fs::exists(work() / "front" / "design.json"));
+  std::ofstream(work() / "front" / "notes.txt") << "mine\n";
+  EXPECT_EQ(run(with_out((work() / "front").string())).code, 0);
+  EXPECT_EQ(specula::testing::read_file(work() / "front" / "notes.txt"), "mine\n");
+}
+
+TEST_F(Cli, IntegerOptionsTakeDecimalDigitsOnly) {
+  const std::vector<std::vector<std::string>> refused{
+      {"--seed", "-1"}, {"--seed", "18446744073709551616"}, {"--seed", ""}, {"--max-cost", "0x2"},
+      {"--max-cost", " 2"}, {"--max-cost", "+2"}, {"--shard", "+0/4"}, {"--shard", "0/4 "}, {"--threads", "1e1"}};
+  for (const auto& option : refused) {
+    std::vector<std::string> args{"design", "-q", "--no-timing", "--out", (work() / "d").string()};
+    args.insert(args.end(), option.begin(), option.end());
+    const Result r = bad(args);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(option[0])) << r.err;
+  }
+  EXPECT_THAT(bad({"eval", "-m", "log", "--cos", "1", "--round", "0x3"}).err, HasSubstr("--round"));  // every command
+  EXPECT_EQ(run({"eval", "-m", "log", "--cos", "1", "--round", "3"}).code, 0);  // the control
+  EXPECT_FALSE(fs::exists(work() / "d"));
+}
+
 // ---- design: bad settings are refused before any work, and nothing is written ------------------
 
 TEST_F(Cli, DesignRefusesBadSettingsInOneLineWritingNothing) {

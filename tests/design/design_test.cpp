@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <vector>
 #include <unistd.h>
 
 #include "specula/catalogue/catalogue.h"
@@ -186,10 +187,18 @@ TEST(Design, ACheckFailsForALobeThatGoesNegative) {  // the negative control of 
   EXPECT_NE(l.check.find("non-negativity"), std::string::npos) << l.check;
 }
 
-TEST(Design, AFormBudgetStopsTheScreening) {
+TEST(Design, AFormBudgetStopsTheScreeningAndProgressCountsTheShapesAsItGoes) {
   Settings s = small();
   s.max_forms = 3;
-  EXPECT_EQ(design(s).forms_screened, 3);
+  std::vector<Progress> screening;
+  const auto watch = [&](const Progress& p) {
+    if (p.phase == "screening shapes") screening.push_back({p.phase, p.done, p.total, nullptr, p.forms_screened, p.forms_total});
+  };
+  EXPECT_EQ(design(s, watch).forms_screened, 3);
+  ASSERT_FALSE(screening.empty());
+  EXPECT_EQ(screening.front().forms_total, 3);  // from the first report on, not 0/0 until the end
+  EXPECT_EQ(screening.front().forms_screened, 0);
+  EXPECT_EQ(screening.back().forms_screened, 3);
   s.max_forms = 4;  // the first four shapes, shared by two shards
   s.shards = 2;
   s.shard = 1;

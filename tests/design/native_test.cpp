@@ -1,11 +1,20 @@
 // The designer's native kernels: the generated Highway code computes the formula it was written
 // from (to float accuracy), counts its operations, and fails loudly where it cannot compile.
+#include <atomic>
 #include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 #include "design/native.h"
+#include "design/process.h"
 #include "design/spirv.h"
+#include "specula/exceptions.h"
+#include "specula/interrupt/interrupt.h"
 
 #include <cstring>
 
@@ -58,7 +67,128 @@ TEST_F(NativeTest, AFailedCompileSaysSo) {
 }
 
 TEST_F(NativeTest, AStopEndsTheCompile) {
-  EXPECT_THROW(NativeKernels({lobe("c")}, dir_, [] { return true; }), std::runtime_error);
+  EXPECT_THROW(NativeKernels({lobe("c")}, dir_, [] { return true; }), Interrupted);
+}
+
+TEST_F(NativeTest, ACompilerTheUserNamesIsUsedOrRefusedNeverReplaced) {
+  setenv("SPECULA_CXX", "/nonexistent/c++", 1);
+  EXPECT_THROW(native_compiler(), InvalidArgument);
+  setenv("SPECULA_CXX", "sh", 1);  // a name is looked up in PATH
+  EXPECT_EQ(std::filesystem::path(native_compiler()).filename(), "sh");
+  unsetenv("SPECULA_CXX");
+  EXPECT_EQ(native_compiler(), SPECULA_CXX);
+  for (const char* bad : {"0", "-1", "3601", "2x", " 5", "1e2"}) {
+    setenv("SPECULA_COMPILE_TIMEOUT", bad, 1);
+    EXPECT_THROW(compile_limit(), InvalidArgument) << bad;
+  }
+  setenv("SPECULA_COMPILE_TIMEOUT", "7", 1);  // the control
+  EXPECT_EQ(compile_limit(), std::chrono::seconds(7));
+  unsetenv("SPECULA_COMPILE_TIMEOUT");
+  EXPECT_EQ(compile_limit(), kDefaultCompileLimit);
+}
+
+// ---- Child processes: bounded, stoppable, and never outliving specula -------------------------
+
+bool alive(pid_t pid) {  // running, not a zombie waiting for its reaper
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), {});
+  const auto state = text.find(") ");
+  return state != std::string::npos && text[state + 2] != 'Z';
+}
+
+bool dies_within(pid_t pid, std::chrono::milliseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (alive(pid) && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return !alive(pid);
+}
+
+/// A tool that starts a child of its own (as a compiler driver starts cc1plus) and waits: their
+/// pids in `pids`, one per line.
+std::string tool_with_a_child(const std::filesystem::path& dir) {
+  const auto script = dir / "tool.sh", pids = dir / "pids";
+  std::ofstream(script) << "#!/bin/sh\nsleep 300 &\necho $! > '" << pids.string() << ".tmp'\necho $$ >> '" << pids.string()
+                        << ".tmp'\nmv '" << pids.string() << ".tmp' '" << pids.string() << "'\nwait\n";
+  std::filesystem::permissions(script, std::filesystem::perms::owner_all);
+  return script.string();
+}
+
+std::vector<pid_t> wait_for_pids(const std::filesystem::path& file) {
+  for (int i = 0; i < 1000 && !std::filesystem::exists(file); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::ifstream in(file);
+  std::vector<pid_t> pids;
+  for (pid_t pid = 0; in >> pid;) pids.push_back(pid);
+  return pids;
+}
+
+TEST_F(NativeTest, AStoppedToolIsKilledWithTheProcessesItStarted) {
+  std::atomic<bool> stop = false;
+  std::vector<pid_t> pids;
+  std::thread stopper([&] {
+    pids = wait_for_pids(dir_ / "pids");
+    for (pid_t pid : pids) EXPECT_TRUE(alive(pid)) << pid;  // the control: both run until the stop
+    stop = true;
+  });
+  EXPECT_THROW(run_process({tool_with_a_child(dir_)}, dir_ / "log", [&] { return stop.load(); }, std::chrono::seconds(60)),
+               Interrupted);
+  stopper.join();
+  ASSERT_EQ(pids.size(), 2u);
+  for (pid_t pid : pids) EXPECT_TRUE(dies_within(pid, std::chrono::milliseconds(2000))) << pid;
+}
+
+TEST_F(NativeTest, AToolOutlivesNoSpeculaKilledBySigkill) {
+  const pid_t specula = ::fork();
+  ASSERT_GE(specula, 0);
+  if (specula == 0) {
+    try {
+      run_process({tool_with_a_child(dir_)}, dir_ / "log", [] { return false; }, std::chrono::seconds(60));
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  const std::vector<pid_t> pids = wait_for_pids(dir_ / "pids");
+  ASSERT_EQ(pids.size(), 2u);
+  for (pid_t pid : pids) EXPECT_TRUE(alive(pid)) << pid;  // the control
+  ::kill(specula, SIGKILL);
+  int status = 0;
+  ::waitpid(specula, &status, 0);
+  for (pid_t pid : pids) EXPECT_TRUE(dies_within(pid, std::chrono::milliseconds(2000))) << pid;
+}
+
+TEST_F(NativeTest, AToolPastItsLimitIsKilledAndAMissingOneSaysSo) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    run_process({"sleep", "30"}, dir_ / "log", [] { return false; }, std::chrono::seconds(1));
+    ADD_FAILURE() << "no time-out";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("took over 1 s"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  EXPECT_EQ(run_process({"sh", "-c", "exit 3"}, dir_ / "log", [] { return false; }, std::chrono::seconds(30)), 3);
+  EXPECT_THROW(run_process({"/nonexistent/tool"}, dir_ / "log", [] { return false; }, std::chrono::seconds(1)),
+               std::runtime_error);
+}
+
+TEST(ScratchDirectory, GoesWithItsOwnerAndTakesThoseOfEndedProcesses) {
+  const auto temp = std::filesystem::temp_directory_path();
+  const pid_t ended = ::fork();
+  if (ended == 0) ::_exit(0);
+  ::waitpid(ended, nullptr, 0);
+  const auto stale = temp / fmt::format("{}spirv-{}-0", kScratchPrefix, ended);
+  const auto old_style = temp / fmt::format("{}{}", kScratchPrefix, ended);
+  const auto living = temp / fmt::format("{}{}-0", kScratchPrefix, ::getppid());  // the control: its owner runs
+  for (const auto& dir : {stale, old_style, living}) std::filesystem::create_directories(dir / "sub");
+  std::filesystem::path mine;
+  {
+    const ScratchDirectory scratch("spirv");
+    mine = scratch.path();
+    EXPECT_TRUE(std::filesystem::is_directory(mine));
+    EXPECT_FALSE(std::filesystem::exists(stale));
+    EXPECT_FALSE(std::filesystem::exists(old_style));
+    EXPECT_TRUE(std::filesystem::exists(living));
+    std::ofstream(mine / "lobes.cpp") << "int x;\n";
+  }
+  EXPECT_FALSE(std::filesystem::exists(mine));
+  std::filesystem::remove_all(living);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,24 @@ TEST(ToInfix, NegativeConstants) {
   const Expression zero({{Op::constant, 0, -0.0}}, {});
   EXPECT_EQ(to_infix(zero), "-0");
   EXPECT_TRUE(std::signbit(evaluate(parse(to_infix(zero)), {})));
+}
+
+// Every number to_infix writes reads back as the same bits: the designer writes its lobes' formulas
+// (design.json, models.toml) with it, and a subnormal constant there once ended a run with
+// "internal error: stod" (fit::rounded, tests/design/merge_test.cpp).
+TEST(ToInfix, NumbersAtTheEndsOfTheDoublesReadBack) {
+  constexpr double kMax = std::numeric_limits<double>::max(), kTiny = std::numeric_limits<double>::denorm_min();
+  for (const double v : {0.0, -0.0, kTiny, -kTiny, 1e-320, 2.5e-310, std::numeric_limits<double>::min(), kMax, -kMax,
+                         0.1, 1e21, 123456789.125}) {
+    const Expression constant({{Op::constant, 0, v}}, {});
+    const std::string text = to_infix(constant);
+    const double back = evaluate(parse(text), {});
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back), std::bit_cast<std::uint64_t>(v)) << text;
+    const Expression product = parse("c * " + text);  // as a constant of a lobe
+    EXPECT_EQ(to_infix(parse(to_infix(product))), to_infix(product)) << text;
+  }
+  // The control: a number past the largest double is refused, not read as inf.
+  EXPECT_THROW(parse("1.8e308"), ParseError);
 }
 
 // ---- other dialects -------------------------------------------------------------------------

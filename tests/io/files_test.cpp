@@ -280,56 +280,140 @@ TEST(ReadFile, RefusesADirectoryAndAMissingFile) {
 
 // ---- StagedDirectory ------------------------------------------------------------------------
 
+constexpr OutputKind kReport{"report", "index.html"};
+
 void write_files(const fs::path& dir, const std::string& text) {
   write_file_atomically(dir / "index.html", text);
   write_file_atomically(dir / "table.csv", text);
 }
 
-TEST(StagedDirectory, CommitReplacesTheWholeDirectory) {
+void write_output(const fs::path& target, const std::string& text) {
+  StagedDirectory staged(target, kReport);
+  write_files(staged.path(), text);
+  staged.commit();
+}
+
+/// The message StagedDirectory(target) refuses with; empty if it accepts.
+std::string refusal(const fs::path& target, OutputKind kind = kReport) {
+  try {
+    StagedDirectory staged(target, kind);
+  } catch (const InvalidArgument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(StagedDirectory, CommitReplacesTheWholeOutputAndWritesItsManifest) {
   TempDir dir;
   const fs::path report = dir.path() / "report";
-  {
-    StagedDirectory first(report);
-    write_files(first.path(), "first\n");
-    first.commit();
-  }
+  write_output(report, "first\n");
   EXPECT_EQ(contents(report / "index.html"), "first\n");
-  write_file_atomically(report / "stale.csv", "from before\n");
+  EXPECT_EQ(contents(report / kManifestName), "specula report\nindex.html\ntable.csv\n");
   {
-    StagedDirectory second(report);
+    StagedDirectory second(report, kReport);
     write_file_atomically(second.path() / "index.html", "second\n");
     second.commit();
   }
   EXPECT_EQ(contents(report / "index.html"), "second\n");
-  EXPECT_FALSE(fs::exists(report / "stale.csv"));  // the old directory went as a whole
+  EXPECT_FALSE(fs::exists(report / "table.csv"));  // specula's old output went as a whole
   EXPECT_THAT(dir.listing(), ElementsAre("report"));
 }
 
-TEST(StagedDirectory, WithoutCommitTheOldDirectoryStaysAndTheStagingGoes) {
+TEST(StagedDirectory, KeepsTheFilesAUserPutIntoAnEarlierOutput) {
   TempDir dir;
   const fs::path report = dir.path() / "report";
-  fs::create_directory(report);
-  write_file_atomically(report / "index.html", "old\n");
+  write_output(report, "first\n");
+  write_file_atomically(report / "notes.txt", "mine\n");
+  fs::create_directory(report / "drafts");
+  write_file_atomically(report / "drafts" / "a.txt", "mine too\n");
+  write_output(report, "second\n");
+  EXPECT_EQ(contents(report / "index.html"), "second\n");
+  EXPECT_EQ(contents(report / "notes.txt"), "mine\n");
+  EXPECT_EQ(contents(report / "drafts" / "a.txt"), "mine too\n");
+  EXPECT_EQ(contents(report / kManifestName), "specula report\nindex.html\ntable.csv\n");  // still not specula's
+  write_output(report, "third\n");
+  EXPECT_EQ(contents(report / "notes.txt"), "mine\n");
+}
+
+TEST(StagedDirectory, RefusesADirectoryOfOtherFilesBeforeAnyWorkAndLeavesItWhole) {
+  TempDir dir;
+  const fs::path mine = dir.path() / "mine";
+  fs::create_directory(mine);
+  write_file_atomically(mine / "thesis.tex", "years of work\n");
+  EXPECT_THAT(refusal(mine), HasSubstr("not empty and not an earlier output of `specula report`"));
+  EXPECT_THAT(refusal(mine.string() + "/"), HasSubstr("not an earlier output"));
+  fs::create_symlink(mine, dir.path() / "link");
+  EXPECT_THAT(refusal(dir.path() / "link"), HasSubstr("not an earlier output"));  // through a link, the same rule
+  EXPECT_EQ(contents(mine / "thesis.tex"), "years of work\n");
+  EXPECT_THAT(dir.listing(), ElementsAre("link", "mine"));
+  // Control: the same directory, empty, is accepted.
+  fs::remove(mine / "thesis.tex");
+  EXPECT_EQ(refusal(mine), "");
+}
+
+TEST(StagedDirectory, RefusesAnotherCommandsOutputAndAcceptsOneFromBeforeManifestsByItsMarker) {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  write_output(out, "report\n");
+  EXPECT_THAT(refusal(out, {"design", "design.json"}), HasSubstr("another command's output"));
+  const fs::path old = dir.path() / "old";
+  fs::create_directory(old);
+  write_file_atomically(old / "index.html", "from an earlier specula\n");
+  write_file_atomically(old / "figure.svg", "<svg/>\n");
+  EXPECT_EQ(refusal(old), "");
+  write_output(old, "new\n");
+  EXPECT_EQ(contents(old / "index.html"), "new\n");
+  EXPECT_EQ(contents(old / "figure.svg"), "<svg/>\n");  // not known to be specula's: kept
+}
+
+TEST(StagedDirectory, RefusesTheWorkingDirectoryAndThoseHoldingIt) {
+  TempDir dir;
+  const fs::path work = dir.path() / "work";
+  fs::create_directory(work);
+  const fs::path before = fs::current_path();
+  fs::current_path(work);
+  const std::string dot = refusal("."), dotdot = refusal(".."), absolute = refusal(work), root = refusal("/");
+  const std::string inside = refusal("sub/");
+  fs::current_path(before);
+  EXPECT_THAT(dot, HasSubstr("working directory"));
+  EXPECT_THAT(dotdot, HasSubstr("working directory"));
+  EXPECT_THAT(absolute, HasSubstr("working directory"));
+  EXPECT_THAT(root, HasSubstr("working directory"));
+  EXPECT_EQ(inside, "");  // control: a new directory below it is fine
+}
+
+TEST(StagedDirectory, NormalizesATrailingSlashAndDotDot) {
+  TempDir dir;
+  fs::create_directory(dir.path() / "a");
+  write_output(dir.path().string() + "/a/../report/", "slashed\n");
+  EXPECT_EQ(contents(dir.path() / "report" / "index.html"), "slashed\n");
+  EXPECT_THAT(dir.listing(), ElementsAre("a", "report"));
+}
+
+TEST(StagedDirectory, WithoutCommitTheOldDirectoryStaysAndTheStagingAndNewFoldersGo) {
+  TempDir dir;
+  const fs::path report = dir.path() / "report";
+  write_output(report, "old\n");
   {
-    StagedDirectory failed(report);
+    StagedDirectory failed(report, kReport);
     write_files(failed.path(), "new\n");
   }
   EXPECT_EQ(contents(report / "index.html"), "old\n");
-  EXPECT_THAT(dir.listing(), ElementsAre("report"));
+  {
+    StagedDirectory failed(dir.path() / "x" / "y" / "report", kReport);
+    EXPECT_TRUE(fs::is_directory(dir.path() / "x" / "y"));
+  }
+  EXPECT_THAT(dir.listing(), ElementsAre("report"));  // x and y were made for it, and went with it
 }
 
 TEST(StagedDirectory, AKilledRunLeavesTheOldDirectoryAndTheNextRunRemovesItsStaging) {
   TempDir dir;
   const fs::path report = dir.path() / "report";
-  {
-    StagedDirectory first(report);
-    write_files(first.path(), "old\n");
-    first.commit();
-  }
+  write_output(report, "old\n");
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    StagedDirectory staged(report);
+    StagedDirectory staged(report, kReport);
     write_files(staged.path(), "half\n");
     ::kill(::getpid(), SIGKILL);  // killed before commit
     ::_exit(0);
@@ -340,7 +424,7 @@ TEST(StagedDirectory, AKilledRunLeavesTheOldDirectoryAndTheNextRunRemovesItsStag
   EXPECT_EQ(contents(report / "index.html"), "old\n");
   EXPECT_EQ(dir.listing().size(), 2u);  // report and the killed run's staging directory
   {
-    StagedDirectory next(report);
+    StagedDirectory next(report, kReport);
     EXPECT_EQ(dir.listing().size(), 2u);  // report and this run's own staging: the stale one is gone
   }
   EXPECT_THAT(dir.listing(), ElementsAre("report"));
@@ -349,7 +433,7 @@ TEST(StagedDirectory, AKilledRunLeavesTheOldDirectoryAndTheNextRunRemovesItsStag
 TEST(StagedDirectory, RefusesAFileInPlaceOfTheDirectory) {
   TempDir dir;
   write_file_atomically(dir.path() / "report", "a file\n");
-  EXPECT_THROW(StagedDirectory(dir.path() / "report"), InvalidArgument);
+  EXPECT_THAT(refusal(dir.path() / "report"), HasSubstr("not a directory"));
   EXPECT_EQ(contents(dir.path() / "report"), "a file\n");
 }
 

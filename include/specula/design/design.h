@@ -70,6 +70,9 @@ struct Ranges {
   static constexpr int threads = 1024;                ///< threads in [0, 1024]
   static constexpr int shards = 10'000;               ///< shard count in [1, 10000]
   static constexpr double range_ratio = 1e12;         ///< hi / lo of the range (lo > 0), at most
+  static constexpr double target_max = 1e100;         ///< the target's values, at most (the fits square its errors)
+  static constexpr std::size_t front_members = 80;    ///< members of one front (40 candidates, 2 objectives), at most
+  static constexpr std::size_t design_json_bytes = std::size_t{1} << 20;  ///< a design.json --merge reads: 1 MiB
 };
 
 struct Settings {
@@ -120,6 +123,7 @@ struct Result {
   bool cancelled = false;
   std::string cost_note;         ///< how the costs were obtained (compiler, or why the model)
   std::string spirv_note;        ///< how the SPIR-V counts were obtained, or why not
+  std::string source;            ///< the design.json it was read from (read_design): merge's messages name it
 };
 
 /// What design() reports as it goes, from one thread at a time.
@@ -129,16 +133,30 @@ struct Progress {
   /// While finishing: the front (on the cost model's axis) of the lobes finished so far, their
   /// ids unset; at done: the final front. Valid during the call only; else nullptr.
   const std::vector<Lobe>* front = nullptr;
+  /// The shapes screened so far and this shard's shapes in all (set from the first report on).
+  std::int64_t forms_screened = 0, forms_total = 0;
 };
 
 /// Runs the designer. Throws InvalidArgument / InvalidField on bad settings (target not a lobe,
-/// range outside the parameter's, empty or reversed, budgets out of range).
+/// or somewhere on the domain not finite, negative or above Ranges::target_max; range outside the
+/// parameter's, empty or reversed, budgets out of range).
 Result design(const Settings& settings, const std::function<void(const Progress&)>& progress = {});
 
-/// One front from the fronts of shards of one search (the same target, parameters, range,
-/// objective and zone; InvalidField "merge" otherwise): their members' union, the references
-/// measured again, everything timed again in one run on this machine, the Pareto front taken anew.
-Result merge(const std::vector<Result>& shards, const std::function<void(const Progress&)>& progress = {});
+/// What a merge takes from the command line rather than from the shards.
+struct MergeOptions {
+  bool measure_cost = true;  ///< time the front as native code (else the cost model only)
+  int threads = 0;           ///< for the measuring; 0: all cores
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// One front from the fronts of shards of one search (the same target, parameters, form, range,
+/// objective and zone; InvalidField "merge" naming both values otherwise): their members' union,
+/// each member measured again over the whole domain as design() measures a finished lobe (the
+/// errors a shard claims are not used; a member that is not finite somewhere is InvalidField
+/// "merge" naming its file and index), the references measured again, timed as `options` says,
+/// the Pareto front taken anew.
+Result merge(const std::vector<Result>& shards, const MergeOptions& options = {},
+             const std::function<void(const Progress&)>& progress = {});
 
 /// Whether a range is spanned in log p (lo > 0 and hi/lo ≥ 4) rather than in p: the grids of
 /// parameter values, the search for the worst one and the range's middle all follow it.

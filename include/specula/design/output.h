@@ -27,7 +27,8 @@ struct MemberModel {
 MemberModel member_model(const Result& result, const Lobe& l, bool normalized);
 
 /// models.toml: for every member ID (the bare lobe, normalization none) and ID-normalized
-/// (k(p) in closed form where derived, else by quadrature), with the range parameter's range.
+/// (k(p) in closed form where derived, else by quadrature), with the range parameter's range;
+/// for an empty front, `model = []`: a model file that loads with no models.
 std::string models_toml(const Result& result);
 
 /// The front as a plain-text table, members then references.
@@ -35,8 +36,12 @@ std::string front_table(const Result& result);
 
 /// design.json: the settings and every member (formula, shape, errors, cost), what --merge reads.
 std::string design_json(const Result& result);
-/// The result a design.json holds (settings and members; no references). Throws InvalidField
-/// "merge" naming the file on anything it cannot read.
+/// The result a design.json holds (settings and members; no references; `source` its path). Reads
+/// at most Ranges::design_json_bytes and Ranges::front_members members; validates the settings as
+/// the CLI does (validate(), parse_form, parse_operations) and each member's claims (a formula
+/// that is a lobe in c and the parameter, errors ≥ 0, the objective's finite, argmaxes in the
+/// domain, model_cost in [0, max_cost]). Throws InvalidField "merge", one line naming the file and
+/// the key ("merge: D/design.json: 'members'[3].'formula' must be a string").
 Result read_design(const std::filesystem::path& dir);
 
 /// Writes front.csv, models.toml and design.json into the directory `dir` (a staged one: io::StagedDirectory).

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace specula::io {
 
@@ -34,26 +35,52 @@ std::string read_file(const std::filesystem::path& path, std::size_t max_bytes =
 /// Writes `content` to `path` by the rules above.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+/// Which command's output a staged directory is: the command, and a file every output of it
+/// holds (how an output written before manifests existed is recognised).
+struct OutputKind {
+  std::string_view command;  ///< "design", "report"
+  std::string_view marker;   ///< "design.json", "fig5-normalization.csv"
+};
+
+/// The manifest of an output directory: "specula COMMAND" on its first line, then the names
+/// (top level) of the files and folders that specula wrote there, one per line.
+inline constexpr std::string_view kManifestName = ".specula-output";
+
 /// A directory built under a hidden name beside `target` (".NAME.specula-PID") and swapped in
 /// whole by commit() (renameat2 RENAME_EXCHANGE when `target` exists): readers see the old
-/// directory or the new one, never a mix. Destroyed uncommitted (an error, a stop), it removes
-/// what was written. The staging directories of killed runs (their process gone) are removed by
-/// the next run that stages the same target.
+/// directory or the new one, never a mix. What it may replace, checked when constructed (before
+/// any work): a directory that does not exist, an empty one, or an earlier output of the same
+/// command (its manifest names the command; or, written before manifests, it holds the kind's
+/// marker). Everything else (a file, a directory of other files, the working directory or one
+/// that holds it) is refused. Files and folders that specula did not write there (not in the old
+/// manifest) are moved into the new directory: a new output never removes what a user put there.
+/// `target` is normalized first ("DIR/", "a/../DIR", a symbolic link to a directory all name the
+/// directory itself). Destroyed uncommitted (an error, a stop), it removes what was written, and
+/// the parent folders it created. The staging directories of killed runs (their process gone)
+/// are removed by the next run that stages the same target.
 class StagedDirectory {
  public:
-  /// Throws InvalidArgument when `target` exists and is not a directory, or cannot be staged.
-  explicit StagedDirectory(const std::filesystem::path& target);
+  /// Throws InvalidArgument naming `target` and the reason when it may not be replaced or cannot
+  /// be staged.
+  StagedDirectory(const std::filesystem::path& target, OutputKind kind);
   ~StagedDirectory();
   StagedDirectory(const StagedDirectory&) = delete;
   StagedDirectory& operator=(const StagedDirectory&) = delete;
 
   /// Where to write the new directory's files.
   const std::filesystem::path& path() const noexcept { return staging_; }
-  /// Swaps the staged directory in for `target` (the old one is removed afterwards).
+  /// The directory that commit() replaces, normalized.
+  const std::filesystem::path& target() const noexcept { return target_; }
+  /// Writes the manifest, moves the user's files across and swaps the staged directory in for
+  /// `target` (the old output is removed afterwards).
   void commit();
 
  private:
+  void discard() noexcept;
+
   std::filesystem::path target_, staging_;
+  std::string command_;
+  std::vector<std::filesystem::path> created_;  ///< parent folders made for target, outermost first
   bool committed_ = false;
 };
 

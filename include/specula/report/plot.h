@@ -42,6 +42,9 @@ struct Chart {
   int height = 400;
 };
 
+/// Whether the chart has a point to draw: finite, and > 0 on a log axis (what to_svg needs).
+bool has_points(const Chart& chart);
+
 /// The chart as a standalone SVG document. Points that are not finite, or ≤ 0 on a log axis, are
 /// skipped and break the line. Throws InvalidArgument for a series whose x and y differ in size or
 /// a chart with no finite point.
