@@ -14,8 +14,14 @@ debug: deps
 	@cmake --preset debug >/dev/null
 	@cmake --build --preset debug
 
-test: debug
-	@ctest --preset debug
+# Each phase timed (scripts/check-times); the summary of where the time went is printed at the
+# end, also when a phase fails (docs/testing.md).
+test: deps
+	@status=0; \
+	scripts/check-times run build/debug configure -- cmake --preset debug >/dev/null && \
+	scripts/check-times run build/debug build -- cmake --build --preset debug && \
+	scripts/check-times run build/debug test -- ctest --preset debug || status=$$?; \
+	scripts/check-times report build/debug; exit $$status
 
 report: deps
 	@cmake --preset release >/dev/null
