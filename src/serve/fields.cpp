@@ -24,6 +24,9 @@ const char* type_name(const Json& value) {
 Json parse_object(std::string_view body) {
   // nlohmann's parser ends its input at a NUL byte, which would accept `{…}` followed by anything.
   if (body.find('\0') != std::string_view::npos) throw InvalidField("body", "the body is not valid JSON (a NUL byte)");
+  // nlohmann's parser skips a UTF-8 byte order mark, which JSON over the network may not carry
+  // (RFC 8259 §8.1): refused, as any other byte before the value is.
+  if (body.starts_with("\xEF\xBB\xBF")) throw InvalidField("body", "the body is not valid JSON (it starts with a byte order mark)");
   Json json = Json::parse(body, nullptr, false);
   if (json.is_discarded()) throw InvalidField("body", "the body is not valid JSON");
   if (!json.is_object())

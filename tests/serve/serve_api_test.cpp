@@ -203,6 +203,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"a NUL byte after the object", "/api/normalize", std::string(R"({"model": "log"})") + '\0' + "junk", 400, "body"},
         BadRequest{"a NUL byte alone after the object", "/api/albedo", std::string(R"({"model": "log"})") + '\0', 400, "body"},
         BadRequest{"an array body", "/api/normalize", "[1, 2]", 400, "body"},
+        // a body that is valid once a byte order mark is skipped ({} is a whole design job)
+        BadRequest{"a byte order mark", "/api/design", "\xEF\xBB\xBF{}", 400, "body"},
         BadRequest{"NaN literal", "/api/eval", R"({"model": "log", "cos": [NaN]})", 400, "body"},
         BadRequest{"model not a string", "/api/normalize", R"({"model": 3})", 400, "model"},
         BadRequest{"n of strings", "/api/normalize", R"({"model": "log", "n": [1, "2"]})", 400, "n"},
