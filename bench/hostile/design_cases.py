@@ -37,16 +37,18 @@ STOP_S = 3.0  # a stop during the compile ends the run within this
 
 
 def hanging_compiler(directory):
-    """A 'compiler' that never finishes: a shell script (its name the marker) sleeping in a loop."""
+    """A 'compiler' that never finishes and, as a compiler driver starts cc1plus, starts a child
+    of its own: a bash script (its name the marker) waiting on a long sleep whose argv[0] is the
+    marker too, so that a tool killed without its children shows as a leak."""
     path = os.path.join(directory, HANG_MARK)
     with open(path, "w") as f:
-        f.write("#!/bin/sh\nwhile :; do sleep 1; done\n")
+        f.write(f"#!/bin/bash\n(exec -a {HANG_MARK} sleep 600) &\nwait\n")
     os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
     return path
 
 
 def marked_processes():
-    """Pids of the hanging compiler's shells (their argv names the script)."""
+    """Pids of the hanging compiler's processes (the script, its marked sleep)."""
     pids = []
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
@@ -166,6 +168,17 @@ def group_integers(cli):
 
 # ----------------------------------------------------------------------------- the native compile
 
+def reap_alone(p, seconds):
+    """(status, rusage) of p once it exits, within seconds; None if it is still running."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+        if pid:
+            return status, usage
+        time.sleep(0.01)
+    return None
+
+
 def stop_during_compile(cli, g, args, sig, env, expect_codes, what, cap=240):
     """Starts args, waits for the hanging compiler, sends sig to specula alone; judges the end."""
     work = cli.workdir()
@@ -180,15 +193,20 @@ def stop_during_compile(cli, g, args, sig, env, expect_codes, what, cap=240):
             return p.pid
         sent = time.monotonic()
         os.kill(p.pid, sig)
-        proc.wait(p, (out, err), run, cap=time.monotonic() - start + 30)
-        g.count(run.label(), time.monotonic() - sent, run.rss_mib)
+        reaped = reap_alone(p, 30)  # not proc.wait: it kills specula's process group, hiding a leak
         took = time.monotonic() - sent
+        leaked = not wait_for(lambda: not marked_processes(), 2.0)
+        if reaped:
+            proc.finish(p, (out, err), run, reaped[0], reaped[1], start)
+        else:
+            proc.wait(p, (out, err), run, cap=time.monotonic() - start)
+        g.count(run.label(), took, run.rss_mib)
         if sig != signal.SIGKILL and (run.code not in expect_codes):
             g.fault("wrong", f"{what}: exit {run.label()}, expected {'/'.join(map(str, expect_codes))}; "
                              f"{first_line(run.stderr)}")
         if sig != signal.SIGKILL and took > STOP_S:
             g.fault("slow", f"{what}: ended {took:.1f} s after the signal")
-        if not wait_for(lambda: not marked_processes(), 2.0):
+        if leaked:
             g.fault("leak", f"{what}: the compiler is still running after specula ended")
         if sig != signal.SIGKILL and scratch_of(p.pid):
             g.fault("stray", f"{what}: left {scratch_of(p.pid)}")

@@ -14,6 +14,8 @@ KINDS = {
     "body": "bad error bodies",
     "lines": "multi-line errors",
     "slow": "slow answers (/api/models, shutdown)",
+    "loss": "user files lost or changed",
+    "leak": "child processes left running",
     "wrong": "other wrong results",
 }
 MAX_PRINTED_FAULTS = 150
