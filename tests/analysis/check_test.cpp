@@ -13,7 +13,7 @@
 namespace specula::analysis {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 
 CheckOptions fast(double step = 10, std::vector<double> grazing = {89.5, 89.9}) {
   CheckOptions o;
@@ -62,7 +62,7 @@ TEST(Check, WardVariantsAtGrazingIncidence) {
   const CheckResult ward_to_89_999 = check(ward, fast(10, {89.9, 89.99, 89.999}));
   EXPECT_FALSE(ward_to_89_999.conserves_energy);
   EXPECT_EQ(ward_to_89_999.max_albedo.theta_deg, 89.999);
-  const double ratio = albedo(ward, 89.9999 * kDegree).value / albedo(ward, 89.999 * kDegree).value;
+  const double ratio = albedo(ward, 89.9999 * kRadiansPerDegree).value / albedo(ward, 89.999 * kRadiansPerDegree).value;
   EXPECT_NEAR(ratio, std::sqrt(10.0), 0.05);  // ∝ 1/√cos θ_i
 
   const CheckResult gmd_to_89_9999 = check(gmd, fast(10, {89.9, 89.99, 89.999, 89.9999}));

@@ -24,7 +24,7 @@ namespace {
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
 
-Settings tiny() {
+Settings tiny_merge() {
   Settings s;
   s.target = "phong";
   s.lo = 1;
@@ -74,7 +74,7 @@ class Scratch {
 // A front of one member claiming `max_abs` (and as much relative error), as a design.json.
 Json claiming(const std::string& formula, double max_abs) {
   Result r;
-  r.settings = tiny();
+  r.settings = tiny_merge();
   r.forms_screened = r.forms_total = 5;
   Lobe l;
   l.id = "phong-d1";
@@ -106,7 +106,7 @@ TEST(Merge, MeasuresEveryMemberAgainAndUsesOnlyWhatItMeasured) {
   ASSERT_EQ(merged.front.size(), 1u);
   Lobe c3;
   c3.formula = "c ^ 3";
-  const DomainError truth = domain_error(c3, tiny(), never);  // what design() measures a finished lobe with
+  const DomainError truth = domain_error(c3, tiny_merge(), never);  // what design() measures a finished lobe with
   EXPECT_GT(truth.max_abs, 0.8);
   EXPECT_EQ(merged.front[0].max_abs, truth.max_abs);
   EXPECT_EQ(merged.front[0].max_rel, truth.max_rel);
@@ -226,7 +226,7 @@ TEST(ReadDesign, ReadsABoundedFile) {
 
 TEST(Design, RefusesATargetTheFitsCannotTake) {
   const auto refused = [](const std::string& target, const std::string& says) {
-    Settings s = tiny();
+    Settings s = tiny_merge();
     s.target = target;
     try {
       validate(s);
@@ -240,7 +240,7 @@ TEST(Design, RefusesATargetTheFitsCannotTake) {
   refused("lobe: 1e308*c^n", "is too large at c = ");
   refused("lobe: c^n/(c - c)", "is not finite at c = ");
   refused("lobe: c^(-n)", "is not finite at c = 4.94066e-324");
-  Settings subnormal = tiny();  // the control: tiny, but a lobe
+  Settings subnormal = tiny_merge();  // the control: tiny, but a lobe
   subnormal.target = "lobe: c^n*1e-320";
   EXPECT_NO_THROW(validate(subnormal));
 }
@@ -258,7 +258,7 @@ void expect_files_load_back(const Result& r, const fs::path& dir) {
 TEST(DesignFiles, AnEmptyFrontLoadsBack) {
   const Scratch scratch;
   Result r;
-  r.settings = tiny();
+  r.settings = tiny_merge();
   expect_files_load_back(r, scratch.dir("empty"));
   EXPECT_FALSE(fs::exists(scratch.dir("empty") / "front.svg"));
 }
@@ -266,7 +266,7 @@ TEST(DesignFiles, AnEmptyFrontLoadsBack) {
 TEST(DesignFiles, AFrontWithNoPointToDrawLoadsBack) {
   const Scratch scratch;
   Result r;
-  r.settings = tiny();
+  r.settings = tiny_merge();
   Lobe c;  // F = c costs 0 in the cost model: no point on the chart's log axis (before: "has no point to draw")
   c.id = "phong-d1";
   c.formula = c.shape = "c";
@@ -281,7 +281,7 @@ TEST(DesignFiles, AFrontWithNoPointToDrawLoadsBack) {
 TEST(DesignFiles, NumbersReadBackExactly) {
   const Scratch scratch;
   Result r;
-  r.settings = tiny();
+  r.settings = tiny_merge();
   r.settings.lo = std::numeric_limits<double>::denorm_min();  // n ∈ (0, 1e9]: the smallest n there is
   r.settings.hi = 4e-312;                                    // … and a subnormal within 10¹² of it
   Lobe l;

@@ -65,7 +65,7 @@ TEST(Codegen, CppCompilesAndMatchesTheEvaluatorBitForBit) {
   const std::string compile = fmt::format("'{}' -std=c++20 -O0 -ffp-contract=off -o '{}' '{}' 2>&1", SPECULA_CXX,
                                           (dir.path / "generated").string(), (dir.path / "generated.cpp").string());
   ASSERT_EQ(run(compile), "") << program;
-  const auto lines = testing::lines_of(run(fmt::format("'{}'", (dir.path / "generated").string())));
+  const auto lines = specula::testing::lines_of(run(fmt::format("'{}'", (dir.path / "generated").string())));
   ASSERT_EQ(lines.size(), std::size(kExpressions) * kInputs.size());
   std::size_t line = 0;
   for (const char* text : kExpressions) {

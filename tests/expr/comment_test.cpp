@@ -87,11 +87,11 @@ std::string glsl_shader(const std::vector<std::string>& texts) {
 }
 
 /// g++ in C++14, where "??/" is a backslash, with every warning an error (-Wcomment, -Wtrigraphs).
-testing::GlslCheck compile_cpp14(const std::string& unit) {
+specula::testing::GlslCheck compile_cpp14(const std::string& unit) {
   static int counter = 0;
   const auto file = std::filesystem::temp_directory_path() / fmt::format("specula-comment-{}-{}.cpp", ::getpid(), counter++);
   std::ofstream(file) << unit;
-  const auto check = testing::run_command(
+  const auto check = specula::testing::run_command(
       fmt::format("'{}' -std=c++14 -fsyntax-only -Wall -Wextra -Werror '{}'", SPECULA_CXX, file.string()));
   std::filesystem::remove(file);
   return check;
@@ -107,7 +107,7 @@ TEST(CommentText, HostileTextsInCommentsCompileInCppAndGlsl) {
   const std::vector<std::string> texts = hostile_texts(200);
   const auto cpp = compile_cpp14(cpp_unit(commented(texts)));
   EXPECT_TRUE(cpp.ok) << cpp.log.substr(0, 4000);
-  const auto glsl = testing::validate_glsl(glsl_shader(commented(texts)), "frag");
+  const auto glsl = specula::testing::validate_glsl(glsl_shader(commented(texts)), "frag");
   EXPECT_TRUE(glsl.ok) << glsl.log.substr(0, 4000);
 }
 
@@ -115,7 +115,7 @@ TEST(CommentText, HostileTextsInCommentsCompileInCppAndGlsl) {
 TEST(CommentText, TheCompilersRejectTheTextsAsTheyAre) {
   const std::vector<std::string> texts = hostile_texts(200);
   EXPECT_FALSE(compile_cpp14(cpp_unit(texts)).ok);
-  EXPECT_FALSE(testing::validate_glsl(glsl_shader(texts), "frag").ok);
+  EXPECT_FALSE(specula::testing::validate_glsl(glsl_shader(texts), "frag").ok);
   for (const std::string attack : {"a\n#error x", "a \\", "a ?\?/"}) {
     EXPECT_FALSE(compile_cpp14(cpp_unit({attack})).ok) << attack;
     EXPECT_TRUE(compile_cpp14(cpp_unit({comment_text(attack)})).ok) << attack;

@@ -126,7 +126,7 @@ TEST(ToPython, ExactText) {
 
 // ---- round trips ----------------------------------------------------------------------------
 
-bool same_bits_or_both_nan(double a, double b) {
+bool printed_bits_or_both_nan(double a, double b) {
   return (std::isnan(a) && std::isnan(b)) ||
          std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
@@ -138,7 +138,7 @@ RC_GTEST_PROP(ToInfix, ReparsingEvaluatesBitIdentically, ()) {
       *rc::gen::suchThat(rc::gen::arbitrary<double>(), [](double v) { return std::isfinite(v); });
   const auto y = *rc::gen::element(0.0, -1.0, 0.5, 2.0, 1e-3, 7.25);
   const std::vector<double> point{x, y};
-  RC_ASSERT(same_bits_or_both_nan(evaluate(reparsed, point), evaluate(e, point)));
+  RC_ASSERT(printed_bits_or_both_nan(evaluate(reparsed, point), evaluate(e, point)));
 }
 
 RC_GTEST_PROP(ToInfix, IsAFixedPointAfterOneRound, ()) {

@@ -11,7 +11,7 @@
 namespace specula::fit {
 namespace {
 
-Genome nodes_of(std::string_view text) {
+Genome genome_of(std::string_view text) {
   const auto e = expr::parse(text, {"x", "y"});
   return {e.nodes().begin(), e.nodes().end()};
 }
@@ -56,7 +56,7 @@ TEST(EvaluateWithGradient, DerivativesMatchCentralDifferences) {
         "sqrt(x*3) - acos(y*0.2)", "log2(x + 4)*cos(0.5 - y)", "-(x*0.7)/(y - 3.5)",
         "pow(1.3, x*y) * 2"}) {
     SCOPED_TRACE(text);
-    Genome g = nodes_of(text);
+    Genome g = genome_of(text);
     std::vector<double> value, gradient, plus, minus, unused;
     evaluate_with_gradient(g, c.rows(), value, gradient);
     std::size_t k = 0;
@@ -79,13 +79,13 @@ TEST(EvaluateWithGradient, DerivativesMatchCentralDifferences) {
 }
 
 TEST(LinearConstants, AreTheOnesTheFormulaIsJointlyAffineIn) {
-  EXPECT_EQ(linear_constants(nodes_of("2*x + 3")), (std::vector<bool>{true, true}));
-  EXPECT_EQ(linear_constants(nodes_of("2*(x + 3)")), (std::vector<bool>{true, false}));
-  EXPECT_EQ(linear_constants(nodes_of("0.75/(x + 0.5)")), (std::vector<bool>{true, false}));
-  EXPECT_EQ(linear_constants(nodes_of("x/3")), (std::vector<bool>{false}));
-  EXPECT_EQ(linear_constants(nodes_of("exp(2*x) + 1")), (std::vector<bool>{false, true}));
-  EXPECT_EQ(linear_constants(nodes_of("-(2*x) - y*4")), (std::vector<bool>{true, true}));
-  EXPECT_EQ(linear_constants(nodes_of("2*3*x")), (std::vector<bool>{true, false}));
+  EXPECT_EQ(linear_constants(genome_of("2*x + 3")), (std::vector<bool>{true, true}));
+  EXPECT_EQ(linear_constants(genome_of("2*(x + 3)")), (std::vector<bool>{true, false}));
+  EXPECT_EQ(linear_constants(genome_of("0.75/(x + 0.5)")), (std::vector<bool>{true, false}));
+  EXPECT_EQ(linear_constants(genome_of("x/3")), (std::vector<bool>{false}));
+  EXPECT_EQ(linear_constants(genome_of("exp(2*x) + 1")), (std::vector<bool>{false, true}));
+  EXPECT_EQ(linear_constants(genome_of("-(2*x) - y*4")), (std::vector<bool>{true, true}));
+  EXPECT_EQ(linear_constants(genome_of("2*3*x")), (std::vector<bool>{true, false}));
 }
 
 Columns sampled(const char* truth, std::size_t n) {
@@ -98,7 +98,7 @@ Columns sampled(const char* truth, std::size_t n) {
 
 TEST(FitConstants, RecoversLinearAndNonlinearConstants) {
   const Columns c = sampled("2.5*x + 0.75/(x + 0.5)", 40);
-  Genome g = nodes_of("1*x + 1/(x + 1)");
+  Genome g = genome_of("1*x + 1/(x + 1)");
   const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
   EXPECT_NEAR(g[0].value, 2.5, 1e-10);
   EXPECT_NEAR(g[3].value, 0.75, 1e-10);
@@ -108,7 +108,7 @@ TEST(FitConstants, RecoversLinearAndNonlinearConstants) {
 
 TEST(FitConstants, SolvesPurelyLinearFormulasExactly) {
   const Columns c = sampled("-1.25*x*y + 0.5*y + 7", 30);
-  Genome g = nodes_of("9*x*y + 9*y + 9");
+  Genome g = genome_of("9*x*y + 9*y + 9");
   fit_constants(g, c.rows(), Constants::fitted);
   EXPECT_NEAR(g[0].value, -1.25, 1e-13);
   EXPECT_NEAR(g[5].value, 0.5, 1e-13);
@@ -119,14 +119,14 @@ TEST(FitConstants, SolvesPurelyLinearFormulasExactly) {
 // returned predictions.
 TEST(FitConstants, PredictionsAreExactAfterLargeLinearSteps) {
   const Columns c = sampled("2*x + 1", 20);
-  Genome g = nodes_of("1e12 + 1e12*x");
+  Genome g = genome_of("1e12 + 1e12*x");
   const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
   for (std::size_t r = 0; r < predicted.size(); ++r) EXPECT_NEAR(predicted[r], c.target[r], 1e-14);
 }
 
 TEST(FitConstants, RoundsInIntegerMode) {
   const Columns c = sampled("3*x + 2.2", 20);
-  Genome g = nodes_of("1*x + 1");
+  Genome g = genome_of("1*x + 1");
   const auto predicted = fit_constants(g, c.rows(), Constants::integer);
   EXPECT_EQ(g[0].value, 3);
   EXPECT_EQ(g[3].value, 2);
@@ -140,7 +140,7 @@ TEST(FitConstants, WeightsChangeTheLeastSquaresCriterion) {
   Rows rows = c.rows();
   rows.weights.assign(20, 1.0);
   rows.weights[0] = 1e-12;
-  Genome g = nodes_of("5 + 0*x");
+  Genome g = genome_of("5 + 0*x");
   fit_constants(g, rows, Constants::fitted);
   EXPECT_NEAR(g[0].value, 1.0, 1e-9);
 }
@@ -148,7 +148,7 @@ TEST(FitConstants, WeightsChangeTheLeastSquaresCriterion) {
 // Exact constants (snapped, or exponents the simplifier made) are held: only the free ones move.
 TEST(FitConstants, HoldsExactConstantsFixed) {
   const Columns c = sampled("1.5 * x ^ 2.5", 30);
-  Genome g = nodes_of("1 * x ^ 2");
+  Genome g = genome_of("1 * x ^ 2");
   g[2] = expr::exact_constant(2, 1, expr::Symbol::one);
   fit_constants(g, c.rows(), Constants::fitted);
   EXPECT_EQ(g[2].value, 2);
@@ -157,14 +157,14 @@ TEST(FitConstants, HoldsExactConstantsFixed) {
   std::vector<double> value, gradient;
   evaluate_with_gradient(g, c.rows(), value, gradient);
   EXPECT_EQ(gradient.size(), c.target.size());  // one free constant
-  Genome free = nodes_of("1 * x ^ 2");  // negative control: a plain exponent moves to 2.5
+  Genome free = genome_of("1 * x ^ 2");  // negative control: a plain exponent moves to 2.5
   fit_constants(free, c.rows(), Constants::fitted);
   EXPECT_NEAR(free[2].value, 2.5, 1e-9);
 }
 
 TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
   const Columns c = sampled("x", 10);
-  Genome g = nodes_of("log(x - 1.5)");
+  Genome g = genome_of("log(x - 1.5)");
   const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
   EXPECT_TRUE(std::any_of(predicted.begin(), predicted.end(), [](double v) { return !std::isfinite(v); }));
 }

@@ -27,14 +27,14 @@ Samples sampled(double (*f)(double), double lo, double hi, int count) {
   return s;
 }
 
-Genome nodes_of(std::string_view text) {
+Genome minimax_genome(std::string_view text) {
   const auto formula = expr::parse(text, {"x"});
   return {formula.nodes().begin(), formula.nodes().end()};
 }
 
 // The form's error in `measured` once its constants are fitted for `fitted_for`.
 double fitted_error(std::string_view form, const Samples& s, Metric fitted_for, Metric measured) {
-  Genome g = nodes_of(form);
+  Genome g = minimax_genome(form);
   return measure(measured, fit_constants(g, s.rows(), Constants::fitted, fitted_for), s.y);
 }
 
@@ -45,7 +45,7 @@ const Samples kExp = sampled([](double x) { return std::exp(x); }, 0, 1, 1001);
 const double kChebyshevLineError = ((e - 1) * std::log(e - 1) - e + 2) / 2;
 
 TEST(Minimax, FitsTheChebyshevLineOfExp) {
-  Genome g = nodes_of("1 + 1*x");
+  Genome g = minimax_genome("1 + 1*x");
   const auto predicted = fit_constants(g, kExp.rows(), Constants::fitted, Metric::max_abs);
   EXPECT_NEAR(measure(Metric::max_abs, predicted, kExp.y), kChebyshevLineError, 1e-4);
   EXPECT_NEAR(g[1].value, e - 1, 1e-3);
@@ -68,13 +68,13 @@ TEST(Minimax, FitsTheChebyshevLineThroughNonlinearConstants) {
 const Samples kLine = sampled([](double x) { return x; }, 1, 4, 301);
 
 TEST(Minimax, MaxRelMinimizesTheLargestRelativeError) {
-  Genome g = nodes_of("1");
+  Genome g = minimax_genome("1");
   const auto predicted = fit_constants(g, kLine.rows(), Constants::fitted, Metric::max_rel);
   EXPECT_NEAR(g[0].value, 1.6, 1e-9);
   EXPECT_NEAR(measure(Metric::max_rel, predicted, kLine.y), 0.6, 1e-9);
   EXPECT_NEAR(fitted_error("exp(0)", kLine, Metric::max_rel, Metric::max_rel), 0.6, 1e-6);  // c = exp(k): nonlinear
 
-  Genome absolute = nodes_of("1");
+  Genome absolute = minimax_genome("1");
   fit_constants(absolute, kLine.rows(), Constants::fitted, Metric::max_abs);
   EXPECT_NEAR(absolute[0].value, 2.5, 1e-9);
   EXPECT_GT(fitted_error("1", kLine, Metric::rms, Metric::max_rel), 0.6 + 0.1);
@@ -85,11 +85,11 @@ TEST(Minimax, MaxRelMinimizesTheLargestRelativeError) {
 TEST(Minimax, MaxRelLineForExpBeatsTheOtherFits) {
   const double relative = fitted_error("1 + 1*x", kExp, Metric::max_rel, Metric::max_rel);
   for (Metric other : {Metric::rms, Metric::max_abs}) {
-    Genome g = nodes_of("1 + 1*x");
+    Genome g = minimax_genome("1 + 1*x");
     const auto predicted = fit_constants(g, kExp.rows(), Constants::fitted, other);
     EXPECT_LT(relative, measure(Metric::max_rel, predicted, kExp.y)) << metric_name(other);
   }
-  Genome g = nodes_of("1 + 1*x");
+  Genome g = minimax_genome("1 + 1*x");
   const auto predicted = fit_constants(g, kExp.rows(), Constants::fitted, Metric::max_rel);
   EXPECT_NEAR(std::abs(predicted.front() - 1), relative, 1e-9);      // at x = 0, …
   EXPECT_NEAR(std::abs(predicted.back() - e) / e, relative, 1e-9);   // … and at x = 1
@@ -97,7 +97,7 @@ TEST(Minimax, MaxRelLineForExpBeatsTheOtherFits) {
 
 TEST(Minimax, ZeroTargetsLeaveMaxRelToLeastSquares) {
   const Samples s = sampled([](double x) { return x; }, -1, 1, 21);
-  Genome least_squares = nodes_of("1 + 1*x"), relative = least_squares;
+  Genome least_squares = minimax_genome("1 + 1*x"), relative = least_squares;
   fit_constants(least_squares, s.rows(), Constants::fitted, Metric::rms);
   fit_constants(relative, s.rows(), Constants::fitted, Metric::max_rel);
   EXPECT_EQ(relative[0].value, least_squares[0].value);

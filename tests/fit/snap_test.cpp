@@ -30,12 +30,12 @@ struct Data1 {
   }
 };
 
-Genome genome(const char* text) {
+Genome snap_genome(const char* text) {
   const expr::Expression e = expr::parse(text, {"x"});
   return {e.nodes().begin(), e.nodes().end()};
 }
 
-std::string text(const Genome& g) { return expr::to_infix(expr::simplify(expr::Expression(g, {"x"}))); }
+std::string snapped_text(const Genome& g) { return expr::to_infix(expr::simplify(expr::Expression(g, {"x"}))); }
 
 /// What the search passes: rounding (1e-13 of the target's scale here) as the floor.
 SnapSettings rounding() {
@@ -80,43 +80,43 @@ TEST(SnapCandidates, OfferOnlySimpleMultiplesOfTheSymbols) {
 TEST(Snapped, SymbolsOnlyWhereTheFormulaFitsExactly) {
   const double c = 3 * std::numbers::ln2 / 2;
   const Data1 rough(0, 1, 21, [&](double x) { return c * x + 0.05 * std::sin(7 * x); });
-  Genome g = genome("1 * x");
+  Genome g = snap_genome("1 * x");
   fit_constants(g, rough.rows, Constants::fitted);
-  EXPECT_EQ(text(snapped(g, rough.rows, rounding()).genome).find("log"), std::string::npos);
+  EXPECT_EQ(snapped_text(snapped(g, rough.rows, rounding()).genome).find("log"), std::string::npos);
   const Data1 exact(0, 1, 21, [&](double x) { return c * x; });
-  Genome h = genome("1 * x");
+  Genome h = snap_genome("1 * x");
   fit_constants(h, exact.rows, Constants::fitted);
-  EXPECT_EQ(text(snapped(h, exact.rows, rounding()).genome), "3 * log(2) / 2 * x");
+  EXPECT_EQ(snapped_text(snapped(h, exact.rows, rounding()).genome), "3 * log(2) / 2 * x");
 }
 
 TEST(Snapped, TheBloatedFitReadsWithAThirdAndThreePi) {
   const Data1 d(0, 4, 41, [](double x) { return x * x / 3 + std::numbers::pi * x; });
-  const Genome g = genome("(9.424777960769376 + x) * 0.3333333333333334 * x");
+  const Genome g = snap_genome("(9.424777960769376 + x) * 0.3333333333333334 * x");
   const Snapped s = snapped(g, d.rows, rounding());
-  EXPECT_EQ(text(s.genome), "1 / 3 * x * (x + 3 * pi)");
+  EXPECT_EQ(snapped_text(s.genome), "1 / 3 * x * (x + 3 * pi)");
   EXPECT_LT(s.loss, 1e-12);
 }
 
 TEST(Snapped, AGarbageTermSnapsToZeroAndIsSimplifiedAway) {
   const Data1 d(0.1, 1.4, 30, [](double x) { return 2 * x; });
-  const Snapped s = snapped(genome("2.0000000000000004 * x - 8.99e-16 / cos(x)"), d.rows, rounding());
-  EXPECT_EQ(text(s.genome), "2 * x");
+  const Snapped s = snapped(snap_genome("2.0000000000000004 * x - 8.99e-16 / cos(x)"), d.rows, rounding());
+  EXPECT_EQ(snapped_text(s.genome), "2 * x");
 }
 
 TEST(Snapped, AConstantTheDataDoesNotMakeSimpleStays) {
   const Data1 d(0, 1, 21, [](double x) { return 1.05 * x; });
-  const Snapped s = snapped(genome("1.05 * x"), d.rows, rounding());
-  EXPECT_EQ(text(s.genome), "1.05 * x");
+  const Snapped s = snapped(snap_genome("1.05 * x"), d.rows, rounding());
+  EXPECT_EQ(snapped_text(s.genome), "1.05 * x");
 }
 
 TEST(Snapped, TheToleranceDecides) {
   // y = 0.999 x: 1 costs 0.1 % of y, far more than 1 % of the (zero) error; a floor above that
   // error lets it through.
   const Data1 d(0, 1, 21, [](double x) { return 0.999 * x; });
-  EXPECT_EQ(text(snapped(genome("0.999 * x"), d.rows, rounding()).genome), "0.999 * x");
+  EXPECT_EQ(snapped_text(snapped(snap_genome("0.999 * x"), d.rows, rounding()).genome), "0.999 * x");
   SnapSettings loose = rounding();
   loose.floor = 1e-2;
-  EXPECT_EQ(text(snapped(genome("0.999 * x"), d.rows, loose).genome), "x");
+  EXPECT_EQ(snapped_text(snapped(snap_genome("0.999 * x"), d.rows, loose).genome), "x");
 }
 
 }  // namespace

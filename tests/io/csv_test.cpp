@@ -28,10 +28,10 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsNan;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinite = std::numeric_limits<double>::infinity();
 
 // The message of the InvalidArgument that parse_csv(text, "data.csv") throws ("" if none).
-std::string error_of(std::string_view text) {
+std::string csv_error_of(std::string_view text) {
   try {
     (void)parse_csv(text, "data.csv");
   } catch (const InvalidArgument& e) {
@@ -146,7 +146,7 @@ TEST(ParseCsv, NonFiniteValuesAreKeptInAnyCase) {
   ASSERT_EQ(x.size(), 10u);
   for (std::size_t r = 0; r < 4; ++r) EXPECT_THAT(x[r], IsNan()) << "row " << r;
   EXPECT_THAT(std::vector<double>(x.begin() + 4, x.end()),
-              ElementsAre(kInf, kInf, kInf, -kInf, -kInf, kInf));
+              ElementsAre(kInfinite, kInfinite, kInfinite, -kInfinite, -kInfinite, kInfinite));
 }
 
 // ---- errors ---------------------------------------------------------------------------------
@@ -155,85 +155,85 @@ TEST(ParseCsvError, EmptyFile) {
   for (const char* text :
        {"", "\n\n", " \t\r\n", "\xEF\xBB\xBF", "# only a comment\n\n#another\n"}) {
     SCOPED_TRACE(text);
-    EXPECT_EQ(error_of(text), "data.csv: empty file, expected a header line");
+    EXPECT_EQ(csv_error_of(text), "data.csv: empty file, expected a header line");
   }
 }
 
 TEST(ParseCsvError, NoDataRows) {
-  EXPECT_EQ(error_of("n,k\n"), "data.csv: no data rows");
-  EXPECT_EQ(error_of("n,k"), "data.csv: no data rows");
-  EXPECT_EQ(error_of("# x\nn,k\n\n# y\n"), "data.csv: no data rows");
+  EXPECT_EQ(csv_error_of("n,k\n"), "data.csv: no data rows");
+  EXPECT_EQ(csv_error_of("n,k"), "data.csv: no data rows");
+  EXPECT_EQ(csv_error_of("# x\nn,k\n\n# y\n"), "data.csv: no data rows");
 }
 
 TEST(ParseCsvError, EmptyColumnName) {
-  EXPECT_EQ(error_of("n,,k\n1,2,3\n"), "data.csv line 1, column 2: empty column name");
-  EXPECT_EQ(error_of("\nn, \t\n1,2\n"), "data.csv line 2, column 2: empty column name");
-  EXPECT_EQ(error_of("\"\",k\n1,2\n"), "data.csv line 1, column 1: empty column name");
-  EXPECT_EQ(error_of("n,k,\n1,2,3\n"), "data.csv line 1, column 3: empty column name");
+  EXPECT_EQ(csv_error_of("n,,k\n1,2,3\n"), "data.csv line 1, column 2: empty column name");
+  EXPECT_EQ(csv_error_of("\nn, \t\n1,2\n"), "data.csv line 2, column 2: empty column name");
+  EXPECT_EQ(csv_error_of("\"\",k\n1,2\n"), "data.csv line 1, column 1: empty column name");
+  EXPECT_EQ(csv_error_of("n,k,\n1,2,3\n"), "data.csv line 1, column 3: empty column name");
 }
 
 TEST(ParseCsvError, DuplicateColumnName) {
-  EXPECT_EQ(error_of("n,k,n\n1,2,3\n"),
+  EXPECT_EQ(csv_error_of("n,k,n\n1,2,3\n"),
             "data.csv line 1, column 3: duplicate column name \"n\" (also column 1)");
-  EXPECT_EQ(error_of("# c\na, b ,\"b\"\n1,2,3\n"),
+  EXPECT_EQ(csv_error_of("# c\na, b ,\"b\"\n1,2,3\n"),
             "data.csv line 2, column 3: duplicate column name \"b\" (also column 2)");
 }
 
 TEST(ParseCsvError, TooFewFields) {
-  EXPECT_EQ(error_of("n,k,m\n1,2,3\n\n4,5\n"),
+  EXPECT_EQ(csv_error_of("n,k,m\n1,2,3\n\n4,5\n"),
             "data.csv line 4, column 3 (\"m\"): too few fields: expected 3, found 2");
-  EXPECT_EQ(error_of("n,k\n7\n"),
+  EXPECT_EQ(csv_error_of("n,k\n7\n"),
             "data.csv line 2, column 2 (\"k\"): too few fields: expected 2, found 1");
 }
 
 TEST(ParseCsvError, TooManyFields) {
-  EXPECT_EQ(error_of("n,k\n1,2\n3,4,5,6\n"),
+  EXPECT_EQ(csv_error_of("n,k\n1,2\n3,4,5,6\n"),
             "data.csv line 3, column 3: too many fields: expected 2, found 4");
-  EXPECT_EQ(error_of("n,k\r\n1,2,\r\n"),
+  EXPECT_EQ(csv_error_of("n,k\r\n1,2,\r\n"),
             "data.csv line 2, column 3: too many fields: expected 2, found 3");
 }
 
 TEST(ParseCsvError, NotANumber) {
-  EXPECT_EQ(error_of("n,k,m\n1,2,3\n\n4,5,abc\n"),
+  EXPECT_EQ(csv_error_of("n,k,m\n1,2,3\n\n4,5,abc\n"),
             "data.csv line 4, column 3 (\"m\"): expected a number, got \"abc\"");
-  EXPECT_EQ(error_of("n,k\n1,\n"),
+  EXPECT_EQ(csv_error_of("n,k\n1,\n"),
             "data.csv line 2, column 2 (\"k\"): expected a number, got \"\"");
-  EXPECT_EQ(error_of("n,k\n1, \" 2\"\n"),
+  EXPECT_EQ(csv_error_of("n,k\n1, \" 2\"\n"),
             "data.csv line 2, column 2 (\"k\"): expected a number, got \" 2\"");
-  EXPECT_EQ(error_of("n\n\"1,5\"\n"),
+  EXPECT_EQ(csv_error_of("n\n\"1,5\"\n"),
             "data.csv line 2, column 1 (\"n\"): expected a number, got \"1,5\"");
   for (const std::string bad :
        {"1.5x", "1 2", "0x10", "+-1", "++1", "+", "-", "--1", "e5", "1e", "nanx"}) {
     SCOPED_TRACE(bad);
-    EXPECT_EQ(error_of("n\n" + bad + "\n"),
+    EXPECT_EQ(csv_error_of("n\n" + bad + "\n"),
               "data.csv line 2, column 1 (\"n\"): expected a number, got \"" + bad + "\"");
   }
 }
 
 TEST(ParseCsvError, NumberOutOfTheRangeOfADouble) {
   EXPECT_EQ(
-      error_of("n,k\n1,1e400\n"),
+      csv_error_of("n,k\n1,1e400\n"),
       "data.csv line 2, column 2 (\"k\"): the number \"1e400\" is out of the range of a double");
   EXPECT_EQ(
-      error_of("n\n-1e-400\n"),
+      csv_error_of("n\n-1e-400\n"),
       "data.csv line 2, column 1 (\"n\"): the number \"-1e-400\" is out of the range of a double");
 }
 
 TEST(ParseCsvError, UnterminatedQuote) {
-  EXPECT_EQ(error_of("n,\"k\n1,2\n"), "data.csv line 1, column 2: unterminated quote");
-  EXPECT_EQ(error_of("n,k\n1,2\n\"3,4\n"), "data.csv line 3, column 1 (\"n\"): unterminated quote");
-  EXPECT_EQ(error_of("n,k\n1,\"2\"\"\n"), "data.csv line 2, column 2 (\"k\"): unterminated quote");
+  EXPECT_EQ(csv_error_of("n,\"k\n1,2\n"), "data.csv line 1, column 2: unterminated quote");
+  EXPECT_EQ(csv_error_of("n,k\n1,2\n\"3,4\n"), "data.csv line 3, column 1 (\"n\"): unterminated quote");
+  EXPECT_EQ(csv_error_of("n,k\n1,\"2\"\"\n"), "data.csv line 2, column 2 (\"k\"): unterminated quote");
 }
 
 TEST(ParseCsvError, TextAfterTheClosingQuote) {
-  EXPECT_EQ(error_of("\"n\"x,k\n1,2\n"), "data.csv line 1, column 1: text after the closing quote");
-  EXPECT_EQ(error_of("n,k\n1,\"2\" 3\n"),
+  EXPECT_EQ(csv_error_of("\"n\"x,k\n1,2\n"), "data.csv line 1, column 1: text after the closing quote");
+  EXPECT_EQ(csv_error_of("n,k\n1,\"2\" 3\n"),
             "data.csv line 2, column 2 (\"k\"): text after the closing quote");
 }
 
 TEST(ParseCsvError, ColumnNumbersBeyondTheHeaderAreUnnamed) {
   // The unterminated quote is in column 3 of a two-column file.
-  EXPECT_EQ(error_of("n,k\n1,2,\"3\n"), "data.csv line 2, column 3: unterminated quote");
+  EXPECT_EQ(csv_error_of("n,k\n1,2,\"3\n"), "data.csv line 2, column 3: unterminated quote");
 }
 
 TEST(ParseCsvError, SourceNamesTheInput) {

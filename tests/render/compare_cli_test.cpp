@@ -29,7 +29,7 @@ std::string quoted(const std::filesystem::path& path) {
   return fmt::format("'{}'", path.string());
 }
 
-std::string get(const Metadata& metadata, const std::string& key) {
+std::string panel_metadata(const Metadata& metadata, const std::string& key) {
   for (const auto& [k, v] : metadata)
     if (k == key) return v;
   return "<missing " + key + ">";
@@ -50,9 +50,9 @@ TEST(CompareCli, DefaultsToThePapersThreeModelsSideBySide) {
   const ImageFile png = read_png(dir / "c.png");
   EXPECT_EQ(png.image.width(), 16 + 3 * (24 + 16));
   EXPECT_EQ(png.image.height(), 16 + (20 + 34 + 16));
-  EXPECT_EQ(get(png.metadata, "models"), "log-normalized,log,schlick");
-  EXPECT_EQ(get(png.metadata, "parameters"), "log-normalized: n=20; log: n=20; schlick: n=20");
-  EXPECT_EQ(get(png.metadata, "reference"), "-");
+  EXPECT_EQ(panel_metadata(png.metadata, "models"), "log-normalized,log,schlick");
+  EXPECT_EQ(panel_metadata(png.metadata, "parameters"), "log-normalized: n=20; log: n=20; schlick: n=20");
+  EXPECT_EQ(panel_metadata(png.metadata, "reference"), "-");
   const auto lines = lines_of(run.out);
   ASSERT_EQ(lines.size(), 3u) << run.out;
   EXPECT_THAT(lines[0], StartsWith("log-normalized (n=20): luminance peak "));
@@ -78,8 +78,8 @@ TEST(CompareCli, DiffAddsHeatMapsAColourBarAndSummaries) {
   const ImageFile png = read_png(dir / "d.png");
   EXPECT_EQ(png.image.width(), 16 + 3 * (24 + 16) + 142 + 16);
   EXPECT_EQ(png.image.height(), 16 + 2 * (20 + 34 + 16));
-  EXPECT_EQ(get(png.metadata, "reference"), "log-normalized");
-  EXPECT_GT(std::stod(get(png.metadata, "scale_max")), 0);
+  EXPECT_EQ(panel_metadata(png.metadata, "reference"), "log-normalized");
+  EXPECT_GT(std::stod(panel_metadata(png.metadata, "scale_max")), 0);
   // log-normalized against itself: every heat-map pixel is the colour map's 0.
   for (int y = 0; y < 20; ++y)
     for (int x = 0; x < 24; ++x) ASSERT_EQ(code_at(png.image, 16 + x, 86 + y), viridis_srgb8(0)) << x << ',' << y;
@@ -96,7 +96,7 @@ TEST(CompareCli, ParametersGoToTheModelsThatHaveThem) {
                                           quoted(dir / "p.png"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, IsEmpty());
-  EXPECT_EQ(get(read_png(dir / "p.png").metadata, "parameters"), "phong: n=30; ggx: alpha=0.2,f0=1");
+  EXPECT_EQ(panel_metadata(read_png(dir / "p.png").metadata, "parameters"), "phong: n=30; ggx: alpha=0.2,f0=1");
 }
 
 TEST(CompareCli, BadInputFailsInOneLineWithExitCodeTwoAndNoFile) {

@@ -20,25 +20,25 @@ using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 using specula::testing::TempDir;
 
-struct CliRun {
+struct RenderRun {
   int exit_code;
   std::string out, err;
 };
 
 // The CLI with `arguments` (shell words, quoted by the caller where needed).
-CliRun run_cli(const TempDir& dir, const std::string& arguments) {
+RenderRun run_cli(const TempDir& dir, const std::string& arguments) {
   const auto out = dir.path().parent_path() / (dir.path().filename().string() + ".out");
   const auto err = dir.path().parent_path() / (dir.path().filename().string() + ".err");
   const int status = std::system(fmt::format("'{}' render {} >'{}' 2>'{}'", SPECULA_CLI, arguments,
                                              out.string(), err.string()).c_str());
-  CliRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, specula::testing::read_file(out),
+  RenderRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, specula::testing::read_file(out),
           specula::testing::read_file(err)};
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return run;
 }
 
-std::string get(const Metadata& metadata, const std::string& key) {
+std::string metadata_value(const Metadata& metadata, const std::string& key) {
   for (const auto& [k, v] : metadata)
     if (k == key) return v;
   return "<missing " + key + ">";
@@ -46,7 +46,7 @@ std::string get(const Metadata& metadata, const std::string& key) {
 
 TEST(RenderCli, WritesAPngWithItsSettingsAsText) {
   TempDir dir;
-  const CliRun run = run_cli(dir, fmt::format("--model log-normalized -p n=50 --size 40x30 --light dir:0,0,1 "
+  const RenderRun run = run_cli(dir, fmt::format("--model log-normalized -p n=50 --size 40x30 --light dir:0,0,1 "
                                            "--light point:2,2,3:1,0.5,0.5:9 --tonemap aces --out '{}'",
                                            (dir / "s.png").string()));
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -54,32 +54,32 @@ TEST(RenderCli, WritesAPngWithItsSettingsAsText) {
   const ImageFile png = read_png(dir / "s.png");
   EXPECT_EQ(png.image.width(), 40);
   EXPECT_EQ(png.image.height(), 30);
-  EXPECT_EQ(get(png.metadata, "model"), "log-normalized");
-  EXPECT_EQ(get(png.metadata, "parameters"), "n=50");
-  EXPECT_EQ(get(png.metadata, "form"), "rv");
-  EXPECT_EQ(get(png.metadata, "renderer"), "cpu");
-  EXPECT_EQ(get(png.metadata, "lights"), "dir:0,0,1:1,1,1:1 point:2,2,3:1,0.5,0.5:9");
-  EXPECT_EQ(get(png.metadata, "tonemap"), "aces");
+  EXPECT_EQ(metadata_value(png.metadata, "model"), "log-normalized");
+  EXPECT_EQ(metadata_value(png.metadata, "parameters"), "n=50");
+  EXPECT_EQ(metadata_value(png.metadata, "form"), "rv");
+  EXPECT_EQ(metadata_value(png.metadata, "renderer"), "cpu");
+  EXPECT_EQ(metadata_value(png.metadata, "lights"), "dir:0,0,1:1,1,1:1 point:2,2,3:1,0.5,0.5:9");
+  EXPECT_EQ(metadata_value(png.metadata, "tonemap"), "aces");
   EXPECT_GT(png.image.at(20, 15).r, png.image.at(0, 0).r);  // the sphere against the black background
 }
 
 TEST(RenderCli, WritesALinearExrAndReportsTimesWhenVerbose) {
   TempDir dir;
-  const CliRun run = run_cli(dir, fmt::format("--model ggx -p alpha=0.2 --size 16x16 --exr-pixel float --verbose --out '{}'",
+  const RenderRun run = run_cli(dir, fmt::format("--model ggx -p alpha=0.2 --size 16x16 --exr-pixel float --verbose --out '{}'",
                                            (dir / "s.exr").string()));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.err, HasSubstr("rendered 16x16"));
   const ImageFile exr = read_exr(dir / "s.exr");
-  EXPECT_EQ(get(exr.metadata, "model"), "ggx");
-  EXPECT_EQ(get(exr.metadata, "parameters"), "alpha=0.2,f0=1");
-  EXPECT_EQ(get(exr.metadata, "form"), "-");
+  EXPECT_EQ(metadata_value(exr.metadata, "model"), "ggx");
+  EXPECT_EQ(metadata_value(exr.metadata, "parameters"), "alpha=0.2,f0=1");
+  EXPECT_EQ(metadata_value(exr.metadata, "form"), "-");
   EXPECT_GT(exr.image.at(8, 8).r, 0);
 }
 
 TEST(RenderCli, RendersAnObjMesh) {
   TempDir dir;
   dir.write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
-  const CliRun run = run_cli(dir, fmt::format("--model phong-normalized --scene '{}' --size 9x9 --light dir:0,0,1 --out '{}'",
+  const RenderRun run = run_cli(dir, fmt::format("--model phong-normalized --scene '{}' --size 9x9 --light dir:0,0,1 --out '{}'",
                                            (dir / "quad.obj").string(), (dir / "q.png").string()));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_GT(read_png(dir / "q.png").image.at(4, 4).r, 0.1);
@@ -105,7 +105,7 @@ TEST(RenderCli, BadInputFailsInOneLineWithExitCodeTwoAndNoFile) {
       {"--model phong --exposure nan --out " + png, "--exposure"},
   };
   for (const auto& [arguments, message] : cases) {
-    const CliRun run = run_cli(dir, arguments);
+    const RenderRun run = run_cli(dir, arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments;
     EXPECT_THAT(run.err, HasSubstr(message)) << arguments;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -115,7 +115,7 @@ TEST(RenderCli, BadInputFailsInOneLineWithExitCodeTwoAndNoFile) {
 
 TEST(RenderCli, HelpShowsAnExample) {
   TempDir dir;
-  const CliRun run = run_cli(dir, "--help");
+  const RenderRun run = run_cli(dir, "--help");
   EXPECT_EQ(run.exit_code, 0);
   EXPECT_THAT(run.out, HasSubstr("specula render --model log-normalized"));
   EXPECT_THAT(run.out, HasSubstr("--light"));

@@ -23,7 +23,7 @@ using specula::testing::pixel_ray;
 using specula::testing::TempDir;
 using specula::testing::unit;
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiRadians = std::numbers::pi;
 // coef(20) of the log lobe in rv form, by mpmath (tests/reference/normalization.csv).
 constexpr double kLogCoef20 = 4.1927561168511793081;
 
@@ -69,7 +69,7 @@ Rgb expected_radiance(const Scene& scene, const Lobe& lobe, const Ray& ray) {
     if (cos_i <= 0) continue;
     const Vec3 r = n * (2 * cos_i) - l;
     const double f = lobe(dot(r, v));
-    sum = sum + (m.diffuse * (1 / kPi) + m.specular * f) * light.colour * (e * cos_i);
+    sum = sum + (m.diffuse * (1 / kPiRadians) + m.specular * f) * light.colour * (e * cos_i);
   }
   return sum;
 }
@@ -112,7 +112,7 @@ TEST_P(AnalyticShading, EveryPixelMatchesTheHandComputedRadiance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lobes, AnalyticShading,
-                         ::testing::Values(std::pair{"phong-normalized", Lobe{20, 22 / (2 * kPi), false}},
+                         ::testing::Values(std::pair{"phong-normalized", Lobe{20, 22 / (2 * kPiRadians), false}},
                                            std::pair{"log-normalized", Lobe{20, kLogCoef20, true}}));
 
 // Energy. A BRDF conserves energy when its albedo ρ(V) = ∫ f(L, V) cos θ_L dω_L ≤ 1 (docs/math.md §1;
@@ -130,11 +130,11 @@ Scene furnace(const Model& model) {
   scene.material.ambient = {0, 0, 0};
   scene.lights.clear();
   const int count = 4096;
-  const double golden_angle = kPi * (3 - std::sqrt(5.0));
+  const double golden_angle = kPiRadians * (3 - std::sqrt(5.0));
   for (int i = 0; i < count; ++i) {
     const double z = 1 - (2 * i + 1.0) / count, s = std::sqrt(1 - z * z);
     scene.lights.push_back({LightKind::directional, {s * std::cos(i * golden_angle), s * std::sin(i * golden_angle), z},
-                            {}, {1, 1, 1}, 4 * kPi / count});
+                            {}, {1, 1, 1}, 4 * kPiRadians / count});
   }
   return scene;
 }
@@ -167,7 +167,7 @@ TEST(Energy, OneLightPeaksAtTheNormalizedLobesHeight) {
   scene.material.ambient = {0, 0, 0};
   scene.lights = {{LightKind::directional, {0, 0, 1}, {}, {1, 1, 1}, 1}};
   const Image image = render_cpu(scene, {33, 33});
-  const double peak = 0.4 * kLogCoef20 + 0.55 / kPi;
+  const double peak = 0.4 * kLogCoef20 + 0.55 / kPiRadians;
   EXPECT_LE(max_radiance(image), peak * (1 + 1e-6));
   EXPECT_NEAR(image.at(16, 16).r, peak, peak * 1e-6);
 }
@@ -180,12 +180,12 @@ Scene busy_scene(const std::filesystem::path& obj) {
   return scene;
 }
 
-constexpr const char* kTetrahedron =
+constexpr const char* kTetrahedronObj =
     "v -1.5 -1 -1\nv 0.5 -1 -1\nv -1.5 1 -1\nv -1.5 -1 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
 
 TEST(Determinism, ImagesAreBitIdenticalForAnyThreadCount) {
   TempDir dir;
-  const Scene scene = busy_scene(dir.write("t.obj", kTetrahedron));
+  const Scene scene = busy_scene(dir.write("t.obj", kTetrahedronObj));
   std::optional<Image> first;
   for (const int threads : {1, 2, 3, 8}) {
     tbb::task_arena arena(threads);
@@ -213,9 +213,9 @@ TEST(Meshes, AnObjQuadIsHitAndShadedLikeAPlane) {
   // The centre ray meets the quad at the origin: N = V = +z.
   const Vec3 n{0, 0, 1}, l = unit(scene.lights[0].direction);
   const double cos_i = dot(n, l);
-  const double f = Lobe{20, 22 / (2 * kPi), false}(dot(n * (2 * cos_i) - l, n));
+  const double f = Lobe{20, 22 / (2 * kPiRadians), false}(dot(n * (2 * cos_i) - l, n));
   const Material& m = scene.material;
-  EXPECT_NEAR(image.at(16, 16).r, m.ambient.r * m.diffuse.r + (m.diffuse.r / kPi + m.specular.r * f) * cos_i, 1e-6);
+  EXPECT_NEAR(image.at(16, 16).r, m.ambient.r * m.diffuse.r + (m.diffuse.r / kPiRadians + m.specular.r * f) * cos_i, 1e-6);
   EXPECT_EQ(image.at(0, 0), scene.background);  // beyond the quad's corner
 }
 

@@ -36,7 +36,7 @@ json finished(int port, std::int64_t id) {
   return status;
 }
 
-std::int64_t start(int port, const json& request) {
+std::int64_t start_design(int port, const json& request) {
   const Answer a = post_json(port, "/api/design", request);
   EXPECT_EQ(a.status, 202) << a.body;
   EXPECT_THAT(a.body, HasSubstr("/api/design/"));
@@ -45,7 +45,7 @@ std::int64_t start(int port, const json& request) {
 
 TEST(ServeDesign, AJobShipsMembersThatLoadAsModels) {
   TestServer server;
-  const std::int64_t id = start(server.port(), {{"target", "phong"}, {"range", {1, 100}}, {"ops", "fma,mul"},
+  const std::int64_t id = start_design(server.port(), {{"target", "phong"}, {"range", {1, 100}}, {"ops", "fma,mul"},
                                                 {"max_cost", 2}, {"time", 30}, {"timing", false}});
   const json status = finished(server.port(), id);
   ASSERT_EQ(status["state"], "done") << status.dump(2);
@@ -96,14 +96,14 @@ TEST(ServeDesign, BadSettingsAreRefusedNamingTheField) {
   refused({{"params", {{"alpha", 1}}}}, "params");
   refused({{"bogus", 1}}, "bogus");
   // The control: a request within every range starts.
-  const std::int64_t id = start(server.port(), {{"max_cost", 1}, {"ops", "fma"}, {"time", 5}, {"timing", false}});
+  const std::int64_t id = start_design(server.port(), {{"max_cost", 1}, {"ops", "fma"}, {"time", 5}, {"timing", false}});
   EXPECT_EQ(del(server.port(), fmt::format("/api/design/{}", id)).status, 200);
 }
 
 TEST(ServeDesign, OneJobRunsAtATimeAndCancellingFreesItsPlace) {
   TestServer server;
   const json heavy{{"max_cost", 5}, {"time", 120}, {"timing", false}};
-  const std::int64_t id = start(server.port(), heavy);
+  const std::int64_t id = start_design(server.port(), heavy);
   const Answer second = post_json(server.port(), "/api/design", heavy);
   EXPECT_EQ(second.status, 429) << second.body;
   EXPECT_THAT(second.body, HasSubstr("design jobs are running"));

@@ -90,7 +90,7 @@ json poll(int port, std::int64_t id, const std::function<bool(const json&)>& don
   return status;
 }
 
-std::int64_t start(int port, const json& request) {
+std::int64_t start_fit(int port, const json& request) {
   const Answer a = specula::testing::post_json(port, "/api/fit", request);
   EXPECT_EQ(a.status, 202) << a.body;
   return a.status == 202 ? a.json()["job"].get<std::int64_t>() : -1;
@@ -99,7 +99,7 @@ std::int64_t start(int port, const json& request) {
 TEST(ServeFit, AJobGrowsItsFrontAndIsGoneOnceCancelled) {
   TestServer server;
   // The paper's Fig. 5 table to 3 decimals, fitted with a budget far beyond this test's patience.
-  const std::int64_t id = start(server.port(), {{"model", "log"}, {"n", "paper50"}, {"round", 3},
+  const std::int64_t id = start_fit(server.port(), {{"model", "log"}, {"n", "paper50"}, {"round", 3},
                                                 {"generations", 100000}, {"time", 60}});
   const json status = poll(server.port(), id, [](const json& s) { return s["front"].size() >= 3; });
   ASSERT_EQ(status["state"], "running") << status.dump(2);
@@ -129,7 +129,7 @@ TEST(ServeFit, AJobOnColumnsFindsTheExactFormula) {
     columns["x"].push_back(i);
     columns["y"].push_back(2.5 * i + 1);
   }
-  const std::int64_t id = start(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}}, {"generations", 2}});
+  const std::int64_t id = start_fit(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}}, {"generations", 2}});
   const json status = poll(server.port(), id, [](const json&) { return false; });
   ASSERT_EQ(status["state"], "done") << status.dump(2);
   EXPECT_EQ(status["stopped_by"], "generations");
@@ -147,7 +147,7 @@ TEST(ServeFit, TheLastOperatorsHaveSizesAndWeights) {
     columns["x"].push_back(0.05 * i);
     columns["y"].push_back(std::asin(0.05 * i) + std::log1p(0.05 * i));
   }
-  const std::int64_t id = start(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}},
+  const std::int64_t id = start_fit(server.port(), {{"data", {{"columns", columns}, {"target", "y"}}},
                                                 {"ops", "+,*,asin,expm1,log1p"},
                                                 {"size_weights", "asin=2,expm1=3,log1p=2"},
                                                 {"max_size", 10},
@@ -167,7 +167,7 @@ TEST(ServeFit, RunsAtMostTheLimitOfJobsAtOnce) {
   limits.max_running_fits = 1;
   TestServer server(limits);
   const json endless{{"model", "log"}, {"generations", 100000}, {"time", 60}};
-  const std::int64_t first = start(server.port(), endless);
+  const std::int64_t first = start_fit(server.port(), endless);
   const Answer second = specula::testing::post_json(server.port(), "/api/fit", endless);
   EXPECT_EQ(second.status, 429) << second.body;
   EXPECT_THAT(second.body, HasSubstr("\"error\""));
@@ -192,7 +192,7 @@ TEST(ServeFit, StoppingTheServerCancelsItsJobs) {
 
 TEST(ServeFit, DestroyingTheServerWithAJobRunningReturns) {
   auto server = std::make_unique<TestServer>();
-  const std::int64_t id = start(server->port(), {{"model", "log"}, {"generations", 100000}, {"time", 60}});
+  const std::int64_t id = start_fit(server->port(), {{"model", "log"}, {"generations", 100000}, {"time", 60}});
   EXPECT_EQ(get(server->port(), fmt::format("/api/fit/{}", id)).json()["state"], "running");
   server.reset();  // stops listening, cancels the job and joins its thread (a hang fails by timeout)
 }
@@ -226,7 +226,7 @@ bool returns_within(std::function<void()> f, std::chrono::seconds limit, const c
 
 TEST(ServeFit, ASearchOfATinyFormulaSpaceEndsWithinItsTime) {
   auto server = std::make_unique<TestServer>();
-  const std::int64_t id = start(server->port(), tiny_space());
+  const std::int64_t id = start_fit(server->port(), tiny_space());
   json status;
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);  // "time": 2
   while (std::chrono::steady_clock::now() < until) {
@@ -243,13 +243,13 @@ TEST(ServeFit, ACancelledJobFreesItsPlaceAtOnceAndTheServerStillStops) {
   limits.max_running_fits = 1;
   auto server = std::make_unique<TestServer>(limits);
   const int port = server->port();
-  const std::int64_t first = start(port, tiny_space());
+  const std::int64_t first = start_fit(port, tiny_space());
   ASSERT_GT(first, 0);
   std::this_thread::sleep_for(std::chrono::seconds(1));  // well into its search (a cancel at once came before it looped)
   EXPECT_EQ(del(port, fmt::format("/api/fit/{}", first)).status, 200);
   // Its place is free, whether or not its search has noticed the cancel yet.
   const json endless{{"model", "log"}, {"generations", 100000}, {"time", 60}};
-  const std::int64_t second = start(port, endless);
+  const std::int64_t second = start_fit(port, endless);
   EXPECT_GT(second, 0);
   // Control: the limit holds for jobs that run.
   EXPECT_EQ(specula::testing::post_json(port, "/api/fit", endless).status, 429);

@@ -54,7 +54,7 @@ std::string with_ranges(const std::string& path, const std::string& ranges) {
   return fmt::format("GET {} HTTP/1.1\r\nHost: 127.0.0.1\r\nRange: {}\r\nConnection: close\r\n\r\n", path, ranges);
 }
 
-std::string repeated(const std::string& item, int count, const std::string& separator = ",") {
+std::string repeated_joined(const std::string& item, int count, const std::string& separator = ",") {
   std::string list;
   for (int i = 0; i < count; ++i) list += (i ? separator : "") + item;
   return list;
@@ -69,7 +69,7 @@ TEST(ServeRanges, ManyOverlappingRangesGetTheResourceOnce) {
   const std::string models = get(server.port(), "/api/models").body;
   ASSERT_FALSE(models.empty());
   // 1500 ranges "0-" (4.5 kB of request) were 1500 copies: 14 MB for app.js, 16.5 MB for models.
-  const std::string ranges = "bytes=" + repeated("0-", 1500);
+  const std::string ranges = "bytes=" + repeated_joined("0-", 1500);
   for (const auto& [path, whole] : {std::pair<std::string, std::string>{"/app.js", std::string(app->bytes)}, {"/api/models", models}}) {
     RawConnection c(server.port());
     ASSERT_TRUE(c.send(with_ranges(path, ranges)));
@@ -92,7 +92,7 @@ TEST(ServeRanges, AMalformedRangeIs416WithAJsonErrorOfItsOwnSize) {
   TestServer server;
   // httplib refuses a Range it cannot parse before any handler runs; valid ranges before the bad
   // one must not multiply even this error's body.
-  for (const std::string& ranges : {std::string("bytes=5-1"), "bytes=" + repeated("0-", 1500) + ",5-1", std::string("lines=1-2")}) {
+  for (const std::string& ranges : {std::string("bytes=5-1"), "bytes=" + repeated_joined("0-", 1500) + ",5-1", std::string("lines=1-2")}) {
     for (const char* path : {"/app.js", "/api/models"}) {
       RawConnection c(server.port());
       ASSERT_TRUE(c.send(with_ranges(path, ranges)));
@@ -376,7 +376,7 @@ TEST(ServeBodies, AnOversizedContentLengthIs413AtOnceAndTheConnectionCloses) {
     EXPECT_TRUE(c.closed_within(2s)) << length;
   }
   // Control: the largest allowed body is read and answered.
-  const std::string body = R"({"model": "log", "cos": [)" + repeated("1.0000000", 6500) + "]}";
+  const std::string body = R"({"model": "log", "cos": [)" + repeated_joined("1.0000000", 6500) + "]}";
   ASSERT_LE(body.size(), Limits{}.max_body_bytes);
   EXPECT_EQ(post(server.port(), "/api/eval", body).status, 200);
 }

@@ -23,14 +23,14 @@ using specula::testing::post_json;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-json exponent(double default_value = 20) {
+json exponent_param(double default_value = 20) {
   return {{"default", default_value}, {"min", 0}, {"min_exclusive", true}, {"max", 1e9}};
 }
 
 /// phong-normalized as a user types it: c^n with the closed form (n + 2)/(2π) as a formula.
 json phong_copy() {
   return {{"kind", "lobe"}, {"form", "rv"}, {"lobe", "c^n"}, {"lobe_u", "exp(-n*u)"},
-          {"normalization", "(n + 2)/(2*pi)"}, {"params", {{"n", exponent()}}}};
+          {"normalization", "(n + 2)/(2*pi)"}, {"params", {{"n", exponent_param()}}}};
 }
 
 /// log-normalized as a user types it: the log lobe with k by quadrature.
@@ -38,7 +38,7 @@ json log_copy() {
   return {{"id", "my-log"}, {"name", "log lobe, my copy"}, {"kind", "lobe"}, {"form", "rv"},
           {"lobe", "max(0, 1 - 0.5*log2(1 - n*log2(c)))"},
           {"lobe_u", "max(0, 1 - 0.5*log1p(n*u/log(2))/log(2))"},
-          {"normalization", "quadrature"}, {"params", {{"n", exponent()}}}};
+          {"normalization", "quadrature"}, {"params", {{"n", exponent_param()}}}};
 }
 
 /// ggx as a user types it (examples/models/builtin-copies.toml).

@@ -148,7 +148,7 @@ const std::vector<ModelInfo>& builtin_copies() {
   return infos;
 }
 
-constexpr double kExponents[] = {1e-3, 0.1, 1, 5, 20, 100, 1000, 1e4, 1e6, 1e9};
+constexpr double kFormulaExponents[] = {1e-3, 0.1, 1, 5, 20, 100, 1000, 1e4, 1e6, 1e9};
 
 /// The user lobes at exponent n (the copies of schlick-modified at s = 1.25).
 std::vector<Model> copies_at(double n) {
@@ -188,7 +188,7 @@ Worst check_copy(const lobes::Lobe& lobe, const ErrorBound& bound, const std::ve
 
 template <class T>
 void expect_copies_within_bounds(std::size_t dense) {
-  for (const double n : kExponents)
+  for (const double n : kFormulaExponents)
     for (const Model& model : copies_at(double(T(n))))
       for (const Tier tier : {Tier::exact, Tier::fast}) {
         const std::vector<T> c = probe_cosines<T>(double(T(n)), dense);
@@ -205,7 +205,7 @@ TEST_P(EveryTargetFormula, FloatCopiesWithinStatedBounds) { expect_copies_within
 
 TEST_P(EveryTargetFormula, DoubleCopiesWithinStatedBounds) { expect_copies_within_bounds<double>(1500); }
 
-std::string target_label(const ::testing::TestParamInfo<std::int64_t>& info) {
+std::string formula_target_label(const ::testing::TestParamInfo<std::int64_t>& info) {
   std::string name = target_name(info.param);
   std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
   return name;
