@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
 #include <optional>
+#include <string>
 
 #include "render_support.h"
 #include "specula/exceptions.h"
@@ -88,7 +90,14 @@ Scene analytic_scene(const Model& model) {
 
 double relative_error(double value, double expected) { return std::abs(value - expected) / std::abs(expected); }
 
-class AnalyticShading : public ::testing::TestWithParam<std::pair<const char*, Lobe>> {};
+struct ShadedLobe {
+  const char* id;
+  Lobe lobe;
+
+  friend void PrintTo(const ShadedLobe& s, std::ostream* os) { *os << s.id; }
+};
+
+class AnalyticShading : public ::testing::TestWithParam<ShadedLobe> {};
 
 TEST_P(AnalyticShading, EveryPixelMatchesTheHandComputedRadiance) {
   const auto& [id, lobe] = GetParam();
@@ -112,8 +121,13 @@ TEST_P(AnalyticShading, EveryPixelMatchesTheHandComputedRadiance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lobes, AnalyticShading,
-                         ::testing::Values(std::pair{"phong-normalized", Lobe{20, 22 / (2 * kPiRadians), false}},
-                                           std::pair{"log-normalized", Lobe{20, kLogCoef20, true}}));
+                         ::testing::Values(ShadedLobe{"phong-normalized", Lobe{20, 22 / (2 * kPiRadians), false}},
+                                           ShadedLobe{"log-normalized", Lobe{20, kLogCoef20, true}}),
+                         [](const auto& info) {
+                           std::string name = info.param.id;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 // Energy. A BRDF conserves energy when its albedo ρ(V) = ∫ f(L, V) cos θ_L dω_L ≤ 1 (docs/math.md §1;
 // by reciprocity the integral may run over L). Light the sphere from every direction with equal

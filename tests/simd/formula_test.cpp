@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "simd/probe_cosines.h"
+#include "simd/target_label.h"
 #include "specula/catalogue/model_file.h"
 #include "specula/simd/formula.h"
 #include "specula/simd/lobes.h"
@@ -204,12 +205,6 @@ void expect_copies_within_bounds(std::size_t dense) {
 TEST_P(EveryTargetFormula, FloatCopiesWithinStatedBounds) { expect_copies_within_bounds<float>(1500); }
 
 TEST_P(EveryTargetFormula, DoubleCopiesWithinStatedBounds) { expect_copies_within_bounds<double>(1500); }
-
-std::string formula_target_label(const ::testing::TestParamInfo<std::int64_t>& info) {
-  std::string name = target_name(info.param);
-  std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
-  return name;
-}
 
 INSTANTIATE_TEST_SUITE_P(Simd, EveryTargetFormula, ::testing::ValuesIn(runnable_targets()), target_label);
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "simd/probe_cosines.h"
+#include "simd/target_label.h"
 #include "specula/families/families.h"
 #include "specula/simd/lobes.h"
 #include "specula/simd/targets.h"
@@ -120,12 +121,6 @@ TEST_P(EveryTarget, NanInNanOutExceptGauss) {
         }
       }
     }
-}
-
-std::string target_label(const ::testing::TestParamInfo<std::int64_t>& info) {
-  std::string name = target_name(info.param);
-  std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(static_cast<unsigned char>(ch)); }, '_');
-  return name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Simd, EveryTarget, ::testing::ValuesIn(runnable_targets()), target_label);
