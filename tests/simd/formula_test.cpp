@@ -53,7 +53,9 @@ const OpCase kOps[] = {
     {"min(x, y)", [](double x, double y) { return y < x ? y : x; }, 0, 0},
     {"max(x, y)", [](double x, double y) { return x < y ? y : x; }, 0, 0},
     {"pow(x, y)", [](double x, double y) { return std::pow(x, y); }, 2, 3, 1.2},
-    {"x^2", [](double x, double) { return std::pow(x, 2); }, 0, 0},
+    // x·x is the square correctly rounded; libm's pow(x, 2) is not (1 ulp off at x = 0.70608656112964996):
+    // it passed only where the compiler turned the call into x·x.
+    {"x^2", [](double x, double) { return x * x; }, 0, 0},
     {"x^3", [](double x, double) { return std::pow(x, 3); }, 2, 2},
     {"x^4", [](double x, double) { return std::pow(x, 4); }, 3, 3},
     {"x^-3", [](double x, double) { return std::pow(x, -3); }, 3, 3},
