@@ -15,12 +15,6 @@ namespace {
 
 using fresnel::Kind;
 
-// F82-tint before its clamp: Schlick − b·c(1 − c)⁶.
-double f82_unclamped(double c, double f0, double b) {
-  const double m = 1 - c, m5 = m * m * m * m * m;
-  return f0 + (1 - f0) * m5 - b * c * m5 * m;
-}
-
 // Where g changes sign in (0, 1): sign changes over a grid of 4096 cells, each bisected to the
 // last bit. A pair of roots closer than a cell (a tangency) is missed; what the clamp cuts off
 // there is below 1e-12 of F_avg for the parameters of the domain. A root within 1e-9 of an end is
@@ -79,8 +73,8 @@ std::vector<double> fresnel_kinks(const fresnel::Channel& f) {
   if (f.kind == Kind::dielectric && f.eta < 1) kinks.push_back(std::sqrt(1 - f.eta * f.eta));
   if (f.kind == Kind::f82_tint) {
     const double b = fresnel::f82_tint_b(f.f0, f.tint);
-    add_roots([&](double c) { return f82_unclamped(c, f.f0, b); }, kinks);
-    add_roots([&](double c) { return f82_unclamped(c, f.f0, b) - 1; }, kinks);
+    add_roots([&](double c) { return fresnel::f82_tint_unclamped(c, f.f0, b); }, kinks);
+    add_roots([&](double c) { return fresnel::f82_tint_unclamped(c, f.f0, b) - 1; }, kinks);
   }
   std::sort(kinks.begin(), kinks.end());
   return kinks;
@@ -88,12 +82,13 @@ std::vector<double> fresnel_kinks(const fresnel::Channel& f) {
 
 FresnelAverage fresnel_average(const fresnel::Channel& f) {
   if (const std::string e = fresnel_domain_error(f); !e.empty()) throw InvalidArgument("Fresnel: " + e);
+  const std::vector<double> kinks = fresnel_kinks(f);
   switch (f.kind) {
     case Kind::one: return {1, 0, true};
     case Kind::schlick: return {fresnel::schlick_average(f.f0, f.f90, f.exponent), 0, true};
     case Kind::f82_tint: {
       const double b = fresnel::f82_tint_b(f.f0, f.tint);
-      if (fresnel_kinks(f).empty() && in_unit(f82_unclamped(0.5, f.f0, b)))
+      if (kinks.empty() && in_unit(fresnel::f82_tint_unclamped(0.5, f.f0, b)))
         return {fresnel::f82_tint_average_unclamped(f.f0, f.tint), 0, true};
       break;
     }
@@ -102,7 +97,7 @@ FresnelAverage fresnel_average(const fresnel::Channel& f) {
   }
   // Smoothed ends: F has a square-root edge at the critical cosine (1 − F ∝ √(c − c_crit)).
   const auto estimate = numeric::integrate_pieces([&](double mu) { return 2 * f(mu) * mu; }, 0.0, 1.0, 1.0,
-                                                  fresnel_kinks(f), 1e-14, 20, numeric::Ends::smoothed);
+                                                  kinks, 1e-14, 20, numeric::Ends::smoothed);
   return {estimate.value, estimate.error, false};
 }
 

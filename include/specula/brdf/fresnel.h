@@ -33,12 +33,18 @@ constexpr T f82_tint_b(T f0, T tint) noexcept {
   return at_82 * (T(1) - tint) / (s5 * s / T(7));
 }
 
-/// F82-tint with its b (f82_tint_b): Schlick − b·c(1 − c)⁶, clamped to [0, 1].
+/// F82-tint's polynomial before its clamp, with its b (f82_tint_b): Schlick − b·c(1 − c)⁶.
 template <std::floating_point T>
-T f82_tint(T c, T f0, T b) noexcept {
+T f82_tint_unclamped(T c, T f0, T b) noexcept {
   const T m = std::clamp(T(1) - c, T(0), T(1));
   const T m5 = m * m * m * m * m;
-  return std::clamp(f0 + (T(1) - f0) * m5 - b * c * m5 * m, T(0), T(1));
+  return f0 + (T(1) - f0) * m5 - b * c * m5 * m;
+}
+
+/// F82-tint: f82_tint_unclamped clamped to [0, 1].
+template <std::floating_point T>
+T f82_tint(T c, T f0, T b) noexcept {
+  return std::clamp(f82_tint_unclamped(c, f0, b), T(0), T(1));
 }
 
 /// The exact dielectric Fresnel (Cook & Torrance 1982, eq. 8, from either side): with
