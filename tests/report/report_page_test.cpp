@@ -15,6 +15,7 @@
 #include <string>
 
 #include "specula/render/image_io.h"
+#include "report/quick_report.h"
 #include "text_support.h"
 
 namespace specula::report {
@@ -45,33 +46,36 @@ std::string chromium(const fs::path& profile, const std::string& arguments) {
                      SPECULA_CHROMIUM, profile.string(), arguments);
 }
 
-// One quick report for every test of the suite (a minute under the sanitizers: the suite runs in
-// one process, SHARED_SUITES in tests/report/CMakeLists.txt).
+// The quick report that the report suites share (quick_report.h: made once per ctest run by the
+// fixture report.quick_report); this suite's own files (browser profiles, screenshots) go to a
+// scratch folder of its own.
 class ReportPage : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new fs::path(fs::temp_directory_path() / fmt::format("specula-report-page-{}", ::getpid()));
     fs::remove_all(*dir_);
-    run_ = new Command(run(fmt::format("'{}' report --quick --out '{}'", SPECULA_CLI, (*dir_ / "out").string())));
-    html_ = new std::string(read_file(*dir_ / "out" / "index.html"));
+    fs::create_directories(*dir_);
+    report_ = new specula::testing::QuickReport(specula::testing::quick_report());
+    html_ = new std::string(read_file(report_->dir / "index.html"));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
-    delete run_;
+    delete report_;
     delete html_;
   }
   static const std::string& html() { return *html_; }
-  static fs::path out() { return *dir_ / "out"; }
+  static const specula::testing::QuickReport& made() { return *report_; }
+  static fs::path out() { return report_->dir; }
   static fs::path scratch() { return *dir_; }
 
   static fs::path* dir_;
-  static Command* run_;
+  static specula::testing::QuickReport* report_;
   static std::string* html_;
 };
 
 fs::path* ReportPage::dir_ = nullptr;
-Command* ReportPage::run_ = nullptr;
+specula::testing::QuickReport* ReportPage::report_ = nullptr;
 std::string* ReportPage::html_ = nullptr;
 
 std::set<std::string> ids_of(const std::string& text, const std::string& element) {
@@ -83,11 +87,11 @@ std::set<std::string> ids_of(const std::string& text, const std::string& element
 }
 
 TEST_F(ReportPage, RunsWithProgressPerSectionOnStderr) {
-  ASSERT_EQ(run_->exit_code, 0) << run_->err;
-  EXPECT_EQ(run_->out, "");
-  EXPECT_NE(run_->err.find("report: Figs. 2-4"), std::string::npos) << run_->err;
-  EXPECT_NE(run_->err.find("report: Fig. 9"), std::string::npos) << run_->err;
-  EXPECT_NE(run_->err.find("wrote"), std::string::npos);
+  ASSERT_EQ(made().exit_code, 0) << made().err;
+  EXPECT_EQ(made().out, "");
+  EXPECT_NE(made().err.find("report: Figs. 2-4"), std::string::npos) << made().err;
+  EXPECT_NE(made().err.find("report: Fig. 9"), std::string::npos) << made().err;
+  EXPECT_NE(made().err.find("wrote"), std::string::npos);
 }
 
 TEST_F(ReportPage, WritesFig5WithItsFiftyRowsAndNoStagingFile) {

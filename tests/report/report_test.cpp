@@ -14,6 +14,7 @@
 #include "specula/catalogue/model_file.h"
 #include "specula/normalize/normalize.h"
 #include "specula/report/report.h"
+#include "report/quick_report.h"
 #include "text_support.h"
 
 namespace specula::report {
@@ -38,22 +39,23 @@ TEST_F(ReportTest, RefusesAnOutputThatIsAFile) {
 }
 
 
-// The paper's figures and the sections beyond it, from one quick report shared by the tests below
-// (one process: SHARED_SUITES in tests/report/CMakeLists.txt).
+// The paper's figures and the sections beyond it, from the quick report that the report suites
+// share (quick_report.h: `specula --models tests/report/user_lobes.toml report --quick`, made once
+// per ctest run by the fixture report.quick_report). The user's lobes are registered here too, so
+// that models() lists what the report's CLI saw.
 class BeyondThePaperTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new std::filesystem::path(std::filesystem::temp_directory_path() /
-                                     ("specula-report-beyond-" +
-                                      std::to_string(::testing::UnitTest::GetInstance()->random_seed())));
     register_model_file(SPECULA_SOURCE_DIR "/tests/report/user_lobes.toml");
+    const specula::testing::QuickReport report = specula::testing::quick_report();
+    dir_ = new std::filesystem::path(report.dir);
     sections_ = new std::vector<std::string>;
-    write_report({*dir_, true, [](std::string_view s) { sections_->emplace_back(s); }});
+    for (const auto& line : lines_of(report.err))
+      if (line.starts_with("report: ")) sections_->push_back(line.substr(8));
     html_ = new std::string(read_file(*dir_ / "index.html"));
   }
   static void TearDownTestSuite() {
     clear_registered_models();
-    std::filesystem::remove_all(*dir_);
     delete dir_;
     delete html_;
     delete sections_;
