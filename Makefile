@@ -31,12 +31,14 @@ report: deps
 
 # The lobe benchmark (scalar libm against SIMD exact and fast, with the machine's limits; under a
 # minute), the energy-table benchmark (cubature against Monte Carlo, a few minutes: the Monte Carlo
-# side draws 2^33 samples), then the Google Benchmark timings of the library's other paths.
+# side draws 2^33 samples), then the Google Benchmark timings of the library's other paths, and the
+# random walk's time to a standard error of 1e-4 per cell on one core (docs/random-walk.md).
 bench: build
 	@build/release/bench/specula_lobe_bench
 	@build/release/bench/specula_lut_bench
 	@build/release/bench/specula_bench
 	@build/release/bench/specula_render_bench
+	@build/release/bench/specula_walk_bench
 
 # Symbolic recovery (docs/fit.md): `specula fit` on Nguyen-1…12 as DSR specifies them, 20 s each
 # (about 4-5 minutes on 2 cores), judged by SRBench's symbolic-solution criterion with SymPy; prints

@@ -51,6 +51,7 @@ int run(int argc, char** argv) {
   specula::cli::add_glsl_command(app);
   specula::cli::add_export_command(app);
   specula::cli::add_lut_command(app);
+  specula::cli::add_walk_command(app);
   specula::cli::add_report_command(app);
   specula::cli::add_bench_command(app);
   specula::cli::add_serve_command(app);

@@ -1,0 +1,239 @@
+// The random walk on the Smith microsurface of a conductor (walk.h; Heitz et al. 2016, §5 and the
+// supplemental code's MicrosurfaceConductor, with the two changes docs/random-walk.md explains:
+// leaving is taken in expectation and paths end by Russian roulette).
+#include "specula/walk/walk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "microsurface.h"
+#include "sobol.h"
+#include "specula/analysis/fresnel.h"
+#include "specula/analysis/parallel.h"
+#include "specula/exceptions.h"
+#include "specula/sampling/seeds.h"
+
+namespace specula::walk {
+
+namespace {
+
+using detail::lambda;
+using sampling::SplitMixStream;
+
+// Statistics per channel: the orders, then every order, then 2 or more.
+constexpr int kStats = kOrders + 2;
+// Russian roulette: a path whose largest channel weight falls below this survives with the
+// probability weight/kRoulette and, if it does, carries kRoulette on.
+constexpr double kRoulette = 0.05;
+// A guard, never reached in practice: at α = 4 the mean path has under 20 bounces, and every
+// bounce past the first few leaves with a chance of a few percent at least.
+constexpr int kMaxBounces = 1 << 16;
+
+struct Sums {
+  std::array<double, kStats> sum{}, sum2{};
+};
+
+// A path's uniform numbers: the first two bounces' height and normal from the block's shifted
+// Sobol' net (sobol.h), the rest from the block's stream.
+class Draws {
+ public:
+  Draws(const detail::SobolNet& net, const std::array<std::uint32_t, detail::kSobolDimensions>& shift,
+        SplitMixStream& rng) noexcept
+      : net_(net), shift_(shift), rng_(rng) {}
+  void start_path(std::uint32_t index) noexcept { index_ = index; }
+
+  /// Draw `slot` (0 the height, 1–3 the normal) of bounce `bounce` (1, 2, …).
+  double at(int bounce, int slot) noexcept {
+    const int d = bounce == 1 ? slot : bounce == 2 && slot < 3 ? 4 + slot : -1;
+    return d < 0 ? rng_.uniform() : net_.at(index_, d, shift_[d]);
+  }
+  double uniform() noexcept { return rng_.uniform(); }
+
+ private:
+  const detail::SobolNet& net_;
+  const std::array<std::uint32_t, detail::kSobolDimensions>& shift_;
+  SplitMixStream& rng_;
+  std::uint32_t index_ = 0;
+};
+
+constexpr detail::SobolNet kNet;
+
+// One walk's setup: what every path shares.
+struct Walk {
+  const Microsurface& surface;
+  std::span<const fresnel::Channel> channels;
+  const Faults& faults;
+  Vec3 wi;
+  const Vec3* next_event = nullptr;  // ω_o of conductor_brdf_cos; null for the albedo
+  Microsurface masking{surface.distribution, surface.alpha * faults.masking_alpha_scale};  // G₁'s: `surface`
+
+  double masking_lambda(const Vec3& w) const noexcept { return lambda(masking, w); }
+
+  double fresnel(std::size_t c, int bounce, double cos_d) const noexcept {
+    return bounce == faults.drop_fresnel_at_bounce ? 1.0 : channels[c](std::clamp(cos_d, 0.0, 1.0));
+  }
+
+  // The chance G₁ = u^Λ that a ray along w (upward) leaves from height log u: e^(Λ log u).
+  double leaves(const Vec3& w, double log_u) const noexcept {
+    if (w.z <= 0) return 0;
+    return std::exp(masking_lambda(w) * log_u);
+  }
+
+  // One path: its contributions per channel and order into `value` (channels × kOrders).
+  void path(Draws& draws, std::vector<double>& weight, std::vector<double>& value) const;
+};
+
+void Walk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& value) const {
+  const std::size_t n = channels.size();
+  std::fill(weight.begin(), weight.end(), 1.0);
+  std::fill(value.begin(), value.end(), 0.0);
+  // Entering from above (u = 1) downward: the first height is u = (1 − U)^(1/(1 + Λ(ω_i))).
+  Vec3 ray = -wi;
+  double log_u = std::log1p(-draws.at(1, 0)) / -masking_lambda(ray);
+  for (int bounce = 1; bounce <= kMaxBounces; ++bounce) {
+    const Vec3 in = -ray;
+    const int order = std::min(bounce, kOrders) - 1;
+    if (next_event) {
+      Vec3 half;
+      const double p = detail::phase_function(surface, in, *next_event, half) * leaves(*next_event, log_u);
+      if (p > 0)
+        for (std::size_t c = 0; c < n; ++c) value[c * kOrders + order] += weight[c] * fresnel(c, bounce, dot(in, half)) * p;
+    }
+    const double u1 = draws.at(bounce, 1), u2 = draws.at(bounce, 2), u3 = draws.at(bounce, 3);
+    const Vec3 m = detail::sample_visible_normal(surface, in, u1, u2, u3);
+    const double cos_d = dot(in, m);
+    ray = m * (2 * cos_d) - in;
+    const double escape = leaves(ray, log_u);
+    double largest = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+      const double reflected = weight[c] * fresnel(c, bounce, cos_d);
+      if (!next_event) value[c * kOrders + order] += reflected * escape;
+      weight[c] = reflected * (1 - escape);
+      largest = std::max(largest, weight[c]);
+    }
+    if (largest <= 0 || escape >= 1) return;
+    if (largest < kRoulette) {
+      const double survive = largest / kRoulette;
+      if (draws.uniform() >= survive) return;
+      if (!faults.roulette_unweighted)
+        for (double& w : weight) w /= survive;
+    }
+    // The next height, given that the ray meets the surface again (Heitz et al. 2016, eq. 22
+    // with u for C₁(h)): up, from U uniform on [0, 1 − G₁); down, always.
+    if (ray.z > 0) {
+      const double meets = -std::expm1(masking_lambda(ray) * log_u);
+      log_u -= std::log1p(-meets * draws.at(bounce + 1, 0)) / masking_lambda(ray);
+    } else {
+      log_u += std::log1p(-draws.at(bounce + 1, 0)) / -masking_lambda(ray);
+    }
+  }
+}
+
+// A block's means per channel and statistic.
+std::vector<std::array<double, kStats>> block_means(const Walk& walk, std::uint64_t seed, std::uint64_t block) {
+  const std::size_t n = walk.channels.size();
+  std::vector<std::array<double, kStats>> means(n);
+  std::vector<double> weight(n), value(n * kOrders);
+  SplitMixStream rng(sampling::stream_key(seed, block));
+  std::array<std::uint32_t, detail::kSobolDimensions> shift;
+  for (auto& x : shift) x = std::uint32_t(rng.uniform() * 0x1p32);
+  Draws draws(kNet, shift, rng);
+  for (std::uint32_t p = 0; p < kBlockPaths; ++p) {
+    draws.start_path(p);
+    walk.path(draws, weight, value);
+    for (std::size_t c = 0; c < n; ++c)
+      for (int k = 0; k < kOrders; ++k) {
+        const double x = value[c * kOrders + k];
+        means[c][k] += x;
+        means[c][kOrders] += x;
+        if (k > 0) means[c][kOrders + 1] += x;
+      }
+  }
+  for (auto& m : means)
+    for (double& x : m) x /= double(kBlockPaths);
+  return means;
+}
+
+// The mean of the blocks' means, and its standard error from their spread (the paths of a block
+// are stratified, not independent: the blocks are).
+Estimate estimate(double sum, double sum2, double blocks) {
+  const double mean = sum / blocks;
+  const double variance = std::max(0.0, (sum2 / blocks - mean * mean) * blocks / (blocks - 1));
+  return {mean, std::sqrt(variance / blocks)};
+}
+
+std::vector<Albedo> run(const Walk& walk, const Options& options) {
+  const std::uint64_t blocks = std::max<std::uint64_t>(1, (options.paths + kBlockPaths - 1) / kBlockPaths);
+  const std::size_t n = walk.channels.size();
+  std::vector<Sums> total(n);
+  constexpr std::uint64_t kRound = 64;  // blocks per round: progress and the order of the sums
+  for (std::uint64_t first = 0; first < blocks; first += kRound) {
+    std::vector<std::uint64_t> round(std::min(kRound, blocks - first));
+    for (std::size_t i = 0; i < round.size(); ++i) round[i] = first + i;
+    const auto results = analysis::parallel_map(std::span<const std::uint64_t>(round), [&](std::uint64_t block) {
+      return block_means(walk, options.seed, block);
+    });
+    for (const auto& block : results)
+      for (std::size_t c = 0; c < n; ++c)
+        for (int s = 0; s < kStats; ++s) {
+          total[c].sum[s] += block[c][s];
+          total[c].sum2[s] += block[c][s] * block[c][s];
+        }
+    if (options.progress) options.progress(double(first + round.size()) / double(blocks));
+  }
+  std::vector<Albedo> out(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    std::array<Estimate, kStats> e;
+    for (int s = 0; s < kStats; ++s) e[s] = estimate(total[c].sum[s], total[c].sum2[s], double(blocks));
+    std::copy_n(e.begin(), kOrders, out[c].order.begin());
+    out[c].total = e[kOrders];
+    out[c].multiple = e[kOrders + 1];
+  }
+  return out;
+}
+
+void require(const std::string& error) {
+  if (!error.empty()) throw InvalidArgument(error);
+}
+
+std::string direction_error(const char* name, const Vec3& w) {
+  const double norm = length(w);
+  if (!std::isfinite(norm) || std::abs(norm - 1) > 1e-9) return fmt::format("{} must be a unit vector", name);
+  if (!(w.z > 0)) return fmt::format("{} must point above the surface (z > 0)", name);
+  return "";
+}
+
+}  // namespace
+
+std::string domain_error(const Microsurface& surface, std::span<const fresnel::Channel> channels, double mu,
+                         const Options& options) {
+  if (!(surface.alpha >= Microsurface::kMinAlpha && surface.alpha <= Microsurface::kMaxAlpha))
+    return fmt::format("alpha must be in [{}, {}] (got {})", Microsurface::kMinAlpha, Microsurface::kMaxAlpha,
+                       surface.alpha);
+  if (!(mu > 0 && mu <= 1)) return fmt::format("mu = cos theta must be in (0, 1] (got {})", mu);
+  if (channels.empty()) return "the walk needs at least one Fresnel channel";
+  for (const auto& channel : channels)
+    if (auto error = analysis::fresnel_domain_error(channel); !error.empty()) return error;
+  if (options.paths < kMinPaths || options.paths > kMaxPaths)
+    return fmt::format("paths must be in [{}, {}] (got {})", kMinPaths, kMaxPaths, options.paths);
+  return "";
+}
+
+std::vector<Albedo> conductor_albedo(const Microsurface& surface, std::span<const fresnel::Channel> channels,
+                                     double mu, const Options& options) {
+  require(domain_error(surface, channels, mu, options));
+  const Walk walk{surface, channels, options.faults, {std::sqrt(std::max(0.0, 1 - mu * mu)), 0, mu}};
+  return run(walk, options);
+}
+
+std::vector<Albedo> conductor_brdf_cos(const Microsurface& surface, std::span<const fresnel::Channel> channels,
+                                       const Vec3& wi, const Vec3& wo, const Options& options) {
+  require(direction_error("wi", wi));
+  require(direction_error("wo", wo));
+  require(domain_error(surface, channels, wi.z, options));
+  const Walk walk{surface, channels, options.faults, wi, &wo};
+  return run(walk, options);
+}
+
+}  // namespace specula::walk
