@@ -24,6 +24,7 @@ struct WalkOptions {
   std::string theta = "0,30,60,80";
   std::vector<std::string> fresnel;
   std::string outgoing;
+  std::optional<double> dielectric;
   std::uint64_t paths = std::uint64_t{1} << 20;
   std::uint64_t seed = 1;
   bool quiet = false;
@@ -50,6 +51,8 @@ Cells cells_of(const WalkOptions& o) {
   if (o.fresnel.size() > kMaxChannels) throw InvalidArgument(fmt::format("at most {} --fresnel channels", kMaxChannels));
   for (const auto& spec : o.fresnel) c.channels.push_back(parse_fresnel(spec));
   if (c.channels.empty()) c.channels.push_back({});
+  if (o.dielectric && (!o.fresnel.empty() || !o.outgoing.empty()))
+    throw InvalidArgument("--dielectric walks an interface: it takes neither --fresnel nor --outgoing");
   if (!o.outgoing.empty()) {
     const std::vector<double> v = option_values("--outgoing", o.outgoing, 2);
     if (v.size() != 2 || !(v[0] >= 0 && v[0] < 90))
@@ -83,17 +86,29 @@ io::Table walk_table(const WalkOptions& o) {
   t.key_columns = 4;
   t.meta = {{"distribution", o.distribution},
             {"quantity", c.outgoing ? "BRDF f(wi, wo) by next-event estimation" : "directional albedo"},
+            {"surface", o.dielectric ? fmt::format("dielectric interface, eta = {}", *o.dielectric) : "conductor"},
             {"paths", std::to_string(o.paths)},
             {"seed", std::to_string(o.seed)}};
-  for (std::size_t k = 0; k < c.channels.size(); ++k) t.meta.emplace_back(fmt::format("channel {}", k), to_spec(c.channels[k]));
+  if (o.dielectric) {
+    const char* sides[] = {"reflection", "transmission", "reflection + transmission"};
+    for (int k = 0; k < 3; ++k) t.meta.emplace_back(fmt::format("channel {}", k), sides[k]);
+  } else {
+    for (std::size_t k = 0; k < c.channels.size(); ++k) t.meta.emplace_back(fmt::format("channel {}", k), to_spec(c.channels[k]));
+  }
   const std::size_t cells = c.alpha.size() * c.theta_deg.size();
   for (std::size_t a = 0; a < c.alpha.size(); ++a)
     for (std::size_t i = 0; i < c.theta_deg.size(); ++i) {
       const walk::Microsurface surface{distribution, c.alpha[a]};
       walk::Options options{o.paths, o.seed, progress_of(o, a * c.theta_deg.size() + i, cells), {}};
       const Vec3 wi = direction_deg(c.theta_deg[i], 0);
-      const auto result = c.outgoing ? walk::conductor_brdf_cos(surface, c.channels, wi, *c.outgoing, options)
-                                     : walk::conductor_albedo(surface, c.channels, wi.z, options);
+      std::vector<walk::Albedo> result;
+      if (o.dielectric) {
+        const walk::DielectricAlbedo d = walk::dielectric_albedo(surface, *o.dielectric, wi.z, options);
+        result = {d.reflection, d.transmission, d.energy};
+      } else {
+        result = c.outgoing ? walk::conductor_brdf_cos(surface, c.channels, wi, *c.outgoing, options)
+                            : walk::conductor_albedo(surface, c.channels, wi.z, options);
+      }
       const double scale = c.outgoing ? 1 / c.outgoing->z : 1;  // f·μ_o → f
       for (std::size_t k = 0; k < result.size(); ++k) {
         std::vector<double> row{c.alpha[a], c.theta_deg[i], wi.z, double(k)};
@@ -118,6 +133,8 @@ void add_walk_command(CLI::App& app) {
                   "A Fresnel channel, repeatable (default: one): one, schlick:f0=0.04[,f90=1,p=5], f82:f0=..,tint=.., "
                   "dielectric:eta=1.5, conductor:eta=..,kappa=.. (docs/fresnel.md)");
   cmd->add_option("--outgoing", o->outgoing, "THETA,PHI (degrees): the BRDF f(wi, wo) toward this direction instead of the albedo");
+  cmd->add_option("--dielectric", o->dielectric,
+                  "ETA = n_below/n_above: walk a rough dielectric interface instead (rows: 0 reflection, 1 transmission, 2 their sum)");
   cmd->add_option("--paths,-n", o->paths, fmt::format("Paths per cell, [{}, {}], rounded up to blocks of {}", walk::kMinPaths,
                                                       walk::kMaxPaths, walk::kBlockPaths))
       ->capture_default_str()->check(CLI::Range(walk::kMinPaths, walk::kMaxPaths));
@@ -131,7 +148,8 @@ void add_walk_command(CLI::App& app) {
       "what it misses. docs/random-walk.md. Examples:\n"
       "  specula walk --alpha 1 --theta 0:80:20                       # F = 1: total = 1 within its error\n"
       "  specula walk -a 0.5 -t 60 -f schlick:f0=0.04 -f f82:f0=0.9,tint=0.8 --paths 4000000\n"
-      "  specula walk -d beckmann -a 0.3 -t 30 --outgoing 50,120 -f conductor:eta=0.2,kappa=3.1");
+      "  specula walk -d beckmann -a 0.3 -t 30 --outgoing 50,120 -f conductor:eta=0.2,kappa=3.1\n"
+      "  specula walk -a 0.3 -t 0:80:20 --dielectric 1.5                # rough glass, light from the air");
   cmd->callback([o] { o->output.emit(walk_table(*o)); });
 }
 

@@ -43,9 +43,9 @@ class Draws {
       : net_(net), shift_(shift), rng_(rng) {}
   void start_path(std::uint32_t index) noexcept { index_ = index; }
 
-  /// Draw `slot` (0 the height, 1–3 the normal) of bounce `bounce` (1, 2, …).
+  /// Draw `slot` (0 the height, 1–3 the normal, 4 the dielectric's choice) of bounce `bounce` (1, 2, …).
   double at(int bounce, int slot) noexcept {
-    const int d = bounce == 1 ? slot : bounce == 2 && slot < 3 ? 4 + slot : -1;
+    const int d = bounce == 1 && slot < 4 ? slot : bounce == 2 && slot < 3 ? 4 + slot : -1;
     return d < 0 ? rng_.uniform() : net_.at(index_, d, shift_[d]);
   }
   double uniform() noexcept { return rng_.uniform(); }
@@ -59,7 +59,33 @@ class Draws {
 
 constexpr detail::SobolNet kNet;
 
-// One walk's setup: what every path shares.
+// The next height, given that a ray along `ray` from log u meets the surface again (Heitz et
+// al. 2016, eq. 22 with u for C₁(h)): up, from U uniform on [0, 1 − G₁); down, always. Λ is the
+// masking surface's.
+double next_log_u(const Microsurface& masking, const Vec3& ray, double log_u, double uniform) noexcept {
+  const double l = lambda(masking, ray);
+  if (ray.z > 0) return log_u - std::log1p(std::expm1(l * log_u) * uniform) / l;
+  return log_u + std::log1p(-uniform) / -l;
+}
+
+// The chance G₁ = u^Λ that a ray along w (upward) leaves from height log u: e^(Λ log u).
+double leaves(const Microsurface& masking, const Vec3& w, double log_u) noexcept {
+  if (w.z <= 0) return 0;
+  return std::exp(lambda(masking, w) * log_u);
+}
+
+// Russian roulette on a path's weights: false when the path ends, else the survivors reweighted.
+bool roulette(std::vector<double>& weight, double largest, Draws& draws, const Faults& faults) {
+  if (largest <= 0) return false;
+  if (largest >= kRoulette) return true;
+  const double survive = largest / kRoulette;
+  if (draws.uniform() >= survive) return false;
+  if (!faults.roulette_unweighted)
+    for (double& w : weight) w /= survive;
+  return true;
+}
+
+// A conductor's walk: what every path shares.
 struct Walk {
   const Microsurface& surface;
   std::span<const fresnel::Channel> channels;
@@ -68,16 +94,10 @@ struct Walk {
   const Vec3* next_event = nullptr;  // ω_o of conductor_brdf_cos; null for the albedo
   Microsurface masking{surface.distribution, surface.alpha * faults.masking_alpha_scale};  // G₁'s: `surface`
 
-  double masking_lambda(const Vec3& w) const noexcept { return lambda(masking, w); }
+  std::size_t outputs() const noexcept { return channels.size(); }
 
   double fresnel(std::size_t c, int bounce, double cos_d) const noexcept {
     return bounce == faults.drop_fresnel_at_bounce ? 1.0 : channels[c](std::clamp(cos_d, 0.0, 1.0));
-  }
-
-  // The chance G₁ = u^Λ that a ray along w (upward) leaves from height log u: e^(Λ log u).
-  double leaves(const Vec3& w, double log_u) const noexcept {
-    if (w.z <= 0) return 0;
-    return std::exp(masking_lambda(w) * log_u);
   }
 
   // One path: its contributions per channel and order into `value` (channels × kOrders).
@@ -90,13 +110,13 @@ void Walk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& 
   std::fill(value.begin(), value.end(), 0.0);
   // Entering from above (u = 1) downward: the first height is u = (1 − U)^(1/(1 + Λ(ω_i))).
   Vec3 ray = -wi;
-  double log_u = std::log1p(-draws.at(1, 0)) / -masking_lambda(ray);
+  double log_u = next_log_u(masking, ray, 0, draws.at(1, 0));
   for (int bounce = 1; bounce <= kMaxBounces; ++bounce) {
     const Vec3 in = -ray;
     const int order = std::min(bounce, kOrders) - 1;
     if (next_event) {
       Vec3 half;
-      const double p = detail::phase_function(surface, in, *next_event, half) * leaves(*next_event, log_u);
+      const double p = detail::phase_function(surface, in, *next_event, half) * leaves(masking, *next_event, log_u);
       if (p > 0)
         for (std::size_t c = 0; c < n; ++c) value[c * kOrders + order] += weight[c] * fresnel(c, bounce, dot(in, half)) * p;
     }
@@ -104,7 +124,7 @@ void Walk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& 
     const Vec3 m = detail::sample_visible_normal(surface, in, u1, u2, u3);
     const double cos_d = dot(in, m);
     ray = m * (2 * cos_d) - in;
-    const double escape = leaves(ray, log_u);
+    const double escape = leaves(masking, ray, log_u);
     double largest = 0;
     for (std::size_t c = 0; c < n; ++c) {
       const double reflected = weight[c] * fresnel(c, bounce, cos_d);
@@ -112,27 +132,68 @@ void Walk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& 
       weight[c] = reflected * (1 - escape);
       largest = std::max(largest, weight[c]);
     }
-    if (largest <= 0 || escape >= 1) return;
-    if (largest < kRoulette) {
-      const double survive = largest / kRoulette;
-      if (draws.uniform() >= survive) return;
-      if (!faults.roulette_unweighted)
-        for (double& w : weight) w /= survive;
-    }
-    // The next height, given that the ray meets the surface again (Heitz et al. 2016, eq. 22
-    // with u for C₁(h)): up, from U uniform on [0, 1 − G₁); down, always.
-    if (ray.z > 0) {
-      const double meets = -std::expm1(masking_lambda(ray) * log_u);
-      log_u -= std::log1p(-meets * draws.at(bounce + 1, 0)) / masking_lambda(ray);
-    } else {
-      log_u += std::log1p(-draws.at(bounce + 1, 0)) / -masking_lambda(ray);
-    }
+    if (escape >= 1 || !roulette(weight, largest, draws, faults)) return;
+    log_u = next_log_u(masking, ray, log_u, draws.at(bounce + 1, 0));
   }
 }
 
-// A block's means per channel and statistic.
-std::vector<std::array<double, kStats>> block_means(const Walk& walk, std::uint64_t seed, std::uint64_t block) {
-  const std::size_t n = walk.channels.size();
+// A rough dielectric interface's walk (Heitz et al. 2016, §6: MicrosurfaceDielectric): a path
+// reflects at a facet with the probability F of the exact dielectric Fresnel, else refracts to the
+// other side, where the surface is seen from below. Each side is walked in its own frame, the
+// other side's being the point reflection v → −v, in which the heights are u → 1 − u. Outputs: 0
+// reflection, 1 transmission, 2 both (their sum, path by path, for its standard error).
+struct DielectricWalk {
+  const Microsurface& surface;
+  double eta;  // n below / n above
+  const Faults& faults;
+  Vec3 wi;
+  Microsurface masking{surface.distribution, surface.alpha * faults.masking_alpha_scale};
+
+  std::size_t outputs() const noexcept { return 3; }
+  void path(Draws& draws, std::vector<double>& weight, std::vector<double>& value) const;
+};
+
+// ω refracted at a facet m (in·m > 0, no total internal reflection) into the side of relative
+// index eta: −in/η + m (cos θ_i/η − cos θ_t).
+Vec3 refract(const Vec3& in, const Vec3& m, double eta) noexcept {
+  const double cos_i = dot(in, m);
+  const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+  const double cos_t = std::sqrt(std::max(0.0, 1 - sin2_t));
+  return normalized(m * (cos_i / eta - cos_t) - in * (1 / eta));
+}
+
+void DielectricWalk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& value) const {
+  weight.assign(1, 1.0);
+  std::fill(value.begin(), value.end(), 0.0);
+  bool above = true;
+  Vec3 ray = -wi;  // in the frame of the side the path is on
+  double log_u = next_log_u(masking, ray, 0, draws.at(1, 0));
+  for (int bounce = 1; bounce <= kMaxBounces; ++bounce) {
+    const Vec3 in = -ray;
+    const Vec3 m = detail::sample_visible_normal(surface, in, draws.at(bounce, 1), draws.at(bounce, 2), draws.at(bounce, 3));
+    const double relative = above ? eta : 1 / eta;
+    const double f = bounce == faults.drop_fresnel_at_bounce ? 1.0 : fresnel::dielectric(dot(in, m), relative);
+    if (draws.at(bounce, 4) < f) {
+      ray = m * (2 * dot(in, m)) - in;
+    } else {
+      ray = -refract(in, m, relative);                 // seen from the other side
+      log_u = std::log(-std::expm1(log_u));            // u → 1 − u
+      above = !above;
+    }
+    const double escape = leaves(masking, ray, log_u);
+    const int order = std::min(bounce, kOrders) - 1;
+    value[(above ? 0 : kOrders) + order] += weight[0] * escape;
+    value[2 * kOrders + order] += weight[0] * escape;
+    weight[0] *= 1 - escape;
+    if (escape >= 1 || !roulette(weight, weight[0], draws, faults)) return;
+    log_u = next_log_u(masking, ray, log_u, draws.at(bounce + 1, 0));
+  }
+}
+
+// A block's means per output and statistic.
+template <class W>
+std::vector<std::array<double, kStats>> block_means(const W& walk, std::uint64_t seed, std::uint64_t block) {
+  const std::size_t n = walk.outputs();
   std::vector<std::array<double, kStats>> means(n);
   std::vector<double> weight(n), value(n * kOrders);
   SplitMixStream rng(sampling::stream_key(seed, block));
@@ -163,9 +224,10 @@ Estimate estimate(double sum, double sum2, double blocks) {
   return {mean, std::sqrt(variance / blocks)};
 }
 
-std::vector<Albedo> run(const Walk& walk, const Options& options) {
+template <class W>
+std::vector<Albedo> run(const W& walk, const Options& options) {
   const std::uint64_t blocks = std::max<std::uint64_t>(1, (options.paths + kBlockPaths - 1) / kBlockPaths);
-  const std::size_t n = walk.channels.size();
+  const std::size_t n = walk.outputs();
   std::vector<Sums> total(n);
   constexpr std::uint64_t kRound = 64;  // blocks per round: progress and the order of the sums
   for (std::uint64_t first = 0; first < blocks; first += kRound) {
@@ -225,6 +287,14 @@ std::vector<Albedo> conductor_albedo(const Microsurface& surface, std::span<cons
   require(domain_error(surface, channels, mu, options));
   const Walk walk{surface, channels, options.faults, {std::sqrt(std::max(0.0, 1 - mu * mu)), 0, mu}};
   return run(walk, options);
+}
+
+DielectricAlbedo dielectric_albedo(const Microsurface& surface, double eta, double mu, const Options& options) {
+  const fresnel::Channel interface{fresnel::Kind::dielectric, 1, 1, 5, 1, eta};
+  require(domain_error(surface, {&interface, 1}, mu, options));
+  const DielectricWalk walk{surface, eta, options.faults, {std::sqrt(std::max(0.0, 1 - mu * mu)), 0, mu}};
+  const std::vector<Albedo> sides = run(walk, options);
+  return {sides[0], sides[1], sides[2]};
 }
 
 std::vector<Albedo> conductor_brdf_cos(const Microsurface& surface, std::span<const fresnel::Channel> channels,

@@ -39,6 +39,17 @@ TEST_F(Cli, WalkPrintsTheLibrarysAlbedoByOrderWithErrors) {
   }
 }
 
+TEST_F(Cli, WalkOfADielectricPrintsReflectionTransmissionAndTheirSum) {
+  const Result r = ok({"walk", "--alpha", "0.4", "--theta", "70", "--dielectric", "1.5", "--paths", "32768", "--format", "json"});
+  EXPECT_THAT(r.out, HasSubstr("\"surface\": \"dielectric interface, eta = 1.5\""));
+  EXPECT_THAT(r.out, HasSubstr("\"channel 1\": \"transmission\""));
+  walk::Options options;
+  options.paths = 32768;
+  const auto d = walk::dielectric_albedo({walk::Distribution::ggx, 0.4}, 1.5, std::cos(70 * std::numbers::pi / 180), options);
+  EXPECT_THAT(r.out, HasSubstr(fmt::format("\"total\": {}", d.transmission.total.value)));
+  EXPECT_THAT(r.out, HasSubstr(fmt::format("\"total\": {}", d.energy.total.value)));
+}
+
 TEST_F(Cli, WalkRefusesBadInputInOneLine) {
   EXPECT_THAT(bad({"walk", "-f", "schlick:f0=2"}).err, HasSubstr("f0"));
   EXPECT_THAT(bad({"walk", "-f", "dielectric:eta=-1"}).err, HasSubstr("eta"));
@@ -50,6 +61,8 @@ TEST_F(Cli, WalkRefusesBadInputInOneLine) {
   EXPECT_THAT(bad({"walk", "--alpha", "0.1:4@200", "--paths", "1000000000"}).err, HasSubstr("paths in all"));
   EXPECT_THAT(bad({"walk", "--outgoing", "95,0"}).err, HasSubstr("--outgoing"));
   EXPECT_THAT(bad({"walk", "--distribution", "phong"}).err, HasSubstr("phong"));
+  EXPECT_THAT(bad({"walk", "--dielectric", "0"}).err, HasSubstr("eta"));
+  EXPECT_THAT(bad({"walk", "--dielectric", "1.5", "-f", "one"}).err, HasSubstr("--dielectric"));
   EXPECT_TRUE(listing(work()).empty());
 }
 

@@ -87,6 +87,20 @@ std::string domain_error(const Microsurface& surface, std::span<const fresnel::C
 std::vector<Albedo> conductor_albedo(const Microsurface& surface, std::span<const fresnel::Channel> channels,
                                      double mu, const Options& options);
 
+/// What a rough dielectric interface does with the light of one direction: the share reflected
+/// back to its side and the share transmitted to the other, each split by bounce order (a bounce
+/// is a reflection or a refraction at a facet). Without absorption they sum to 1: `energy` is
+/// their sum, with its own standard error (the two are anti-correlated, so it is far below theirs).
+struct DielectricAlbedo {
+  Albedo reflection, transmission, energy;
+};
+
+/// The walk of a rough dielectric interface between two media, light incident at μ_i = cos θ_i
+/// from above, η = n_below / n_above (η < 1: from the denser side, where total internal
+/// reflection happens), the exact dielectric Fresnel at every facet from either side (Heitz et al.
+/// 2016, §6). Throws as conductor_albedo does (η ∈ [1e-3, 1e3]).
+DielectricAlbedo dielectric_albedo(const Microsurface& surface, double eta, double mu, const Options& options);
+
 /// The BRDF times cos θ_o, f(ω_i, ω_o)·μ_o, split as the albedo is (order 1, 2, 3, ≥ 4, total,
 /// 2 or more), estimated by next-event estimation toward ω_o at every bounce. ω_i and ω_o are
 /// unit vectors above the surface (z > 0). Throws as conductor_albedo does.
