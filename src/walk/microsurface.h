@@ -45,8 +45,8 @@ inline double projected_area(const Microsurface& s, const Vec3& w) noexcept {
 }
 
 /// A normal of the visible normals' distribution D_ω(m) = ⟨ω·m⟩ D(m) / projected_area(ω), from
-/// three uniform numbers.
-Vec3 sample_visible_normal(const Microsurface& s, const Vec3& w, double u1, double u2, double u3) noexcept;
+/// two uniform numbers (a continuous map of the unit square, which the walk's net stratifies).
+Vec3 sample_visible_normal(const Microsurface& s, const Vec3& w, double u1, double u2) noexcept;
 
 /// The conductor's phase function without its Fresnel, p(ω_i → ω_o) = D_ωi(ω_h) / (4 ω_i·ω_h)
 /// = D(ω_h) / (4 projected_area(ω_i)), ω_h the normalized ω_i + ω_o (0 when below the horizon);

@@ -43,7 +43,7 @@ class Draws {
       : net_(net), shift_(shift), rng_(rng) {}
   void start_path(std::uint32_t index) noexcept { index_ = index; }
 
-  /// Draw `slot` (0 the height, 1–3 the normal, 4 the dielectric's choice) of bounce `bounce` (1, 2, …).
+  /// Draw `slot` (0 the height, 1–2 the normal, 3 the dielectric's choice) of bounce `bounce` (1, 2, …).
   double at(int bounce, int slot) noexcept {
     const int d = bounce == 1 && slot < 4 ? slot : bounce == 2 && slot < 3 ? 4 + slot : -1;
     return d < 0 ? rng_.uniform() : net_.at(index_, d, shift_[d]);
@@ -120,8 +120,7 @@ void Walk::path(Draws& draws, std::vector<double>& weight, std::vector<double>& 
       if (p > 0)
         for (std::size_t c = 0; c < n; ++c) value[c * kOrders + order] += weight[c] * fresnel(c, bounce, dot(in, half)) * p;
     }
-    const double u1 = draws.at(bounce, 1), u2 = draws.at(bounce, 2), u3 = draws.at(bounce, 3);
-    const Vec3 m = detail::sample_visible_normal(surface, in, u1, u2, u3);
+    const Vec3 m = detail::sample_visible_normal(surface, in, draws.at(bounce, 1), draws.at(bounce, 2));
     const double cos_d = dot(in, m);
     ray = m * (2 * cos_d) - in;
     const double escape = leaves(masking, ray, log_u);
@@ -170,10 +169,10 @@ void DielectricWalk::path(Draws& draws, std::vector<double>& weight, std::vector
   double log_u = next_log_u(masking, ray, 0, draws.at(1, 0));
   for (int bounce = 1; bounce <= kMaxBounces; ++bounce) {
     const Vec3 in = -ray;
-    const Vec3 m = detail::sample_visible_normal(surface, in, draws.at(bounce, 1), draws.at(bounce, 2), draws.at(bounce, 3));
+    const Vec3 m = detail::sample_visible_normal(surface, in, draws.at(bounce, 1), draws.at(bounce, 2));
     const double relative = above ? eta : 1 / eta;
     const double f = bounce == faults.drop_fresnel_at_bounce ? 1.0 : fresnel::dielectric(dot(in, m), relative);
-    if (draws.at(bounce, 4) < f) {
+    if (draws.at(bounce, 3) < f) {
       ray = m * (2 * dot(in, m)) - in;
     } else {
       ray = -refract(in, m, relative);                 // seen from the other side
