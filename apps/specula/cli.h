@@ -101,5 +101,6 @@ void add_bench_command(CLI::App& app);
 void add_serve_command(CLI::App& app);
 void add_design_command(CLI::App& app);
 void add_walk_command(CLI::App& app);
+void add_verdict_command(CLI::App& app);
 
 }  // namespace specula::cli

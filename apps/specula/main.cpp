@@ -52,6 +52,7 @@ int run(int argc, char** argv) {
   specula::cli::add_export_command(app);
   specula::cli::add_lut_command(app);
   specula::cli::add_walk_command(app);
+  specula::cli::add_verdict_command(app);
   specula::cli::add_report_command(app);
   specula::cli::add_bench_command(app);
   specula::cli::add_serve_command(app);
