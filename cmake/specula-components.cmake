@@ -30,7 +30,7 @@ set(specula_render_packages PNG "OpenEXR 3" tinyobjloader Freetype)
 set(specula_gl_needs core render)
 set(specula_gl_packages "OpenGL COMPONENTS OpenGL EGL")
 
-set(specula_report_needs core fit cost design render)
+set(specula_report_needs core fit cost design queries render)
 set(specula_report_packages "")
 
 set(specula_serve_needs core fit cost design queries render)

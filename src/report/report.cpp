@@ -70,6 +70,7 @@ void write_report(const Options& requested) {
   sections.push_back(normalization_section(context));
   sections.push_back(shader_section(context));
   sections.push_back(energy_section(context));
+  sections.push_back(compensation_section(context));
   sections.push_back(fitted_norms_section(context));
   sections.push_back(cost_section(context));
   sections.push_back(designed_section(context));

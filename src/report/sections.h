@@ -20,6 +20,7 @@ Section shader_section(Context& context);         ///< Figs. 10-11: the GLSL and
 
 // Beyond the paper.
 Section energy_section(Context& context);        ///< albedo ρ(θ_i), conservation table, polar plots
+Section compensation_section(Context& context);  ///< which energy compensation is right: against the walk
 Section fitted_norms_section(Context& context);  ///< exact vs fitted k; fits where no closed form
 Section cost_section(Context& context);          ///< evaluation cost against accuracy
 Section differences_section(Context& context);   ///< log lobes against Blinn-Phong, as images

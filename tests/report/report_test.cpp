@@ -256,6 +256,30 @@ TEST_F(BeyondThePaperTest, FittedFormulasHoldTheirStatedError) {
   }
 }
 
+TEST_F(BeyondThePaperTest, MeasuresEveryCompensationAgainstTheWalk) {
+  const std::string compensation = section("compensation");
+  ASSERT_FALSE(compensation.empty());
+  for (const char* name : {"none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles"})
+    EXPECT_NE(compensation.find(fmt::format("<tr><td><code>{}</code></td>", name)), std::string::npos) << name;
+  EXPECT_NE(compensation.find("<figure id=\"compensation-grazing\">\n<svg"), std::string::npos);
+  const auto rows = csv("compensation-verdict.csv");
+  ASSERT_EQ(rows.size(), 1u + 5 * 6);  // five Fresnel families, six compensations
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"family", "compensation", "max_error", "rms_error", "max_relative_ms",
+                                               "max_walk_se", "cells"}));
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    EXPECT_LT(std::stod(rows[r][5]), 1e-3) << rows[r][0] << " " << rows[r][1];  // the walk is the reference
+    if (rows[r][1] == "none") {
+      if (rows[r][0] != "dielectric") {
+        EXPECT_GT(std::stod(rows[r][2]), 0.3) << rows[r][0];  // uncompensated
+      }
+    } else {
+      EXPECT_LT(std::stod(rows[r][2]), 0.1) << rows[r][0] << " " << rows[r][1];
+    }
+  }
+  // Every (α, μ) cell of the quick grid (3 × 3) for each of the sixteen Fresnel channels.
+  EXPECT_EQ(csv("compensation-cells.csv").size(), 1u + 9 * 16);
+}
+
 TEST_F(BeyondThePaperTest, CostTableListsEveryModel) {
   const std::string cost = section("cost");
   for (const auto& info : models()) {
