@@ -1,6 +1,7 @@
-// The random walk on the Smith microsurface of a conductor (walk.h; Heitz et al. 2016, §5 and the
-// supplemental code's MicrosurfaceConductor, with the two changes docs/random-walk.md explains:
-// leaving is taken in expectation and paths end by Russian roulette).
+// The random walk on the Smith microsurface of a conductor and of a dielectric interface (walk.h;
+// Heitz et al. 2016, §5–6 and the supplemental code's MicrosurfaceConductor and
+// MicrosurfaceDielectric, with the two changes docs/random-walk.md explains: leaving is taken in
+// expectation and paths end by Russian roulette).
 #include "specula/walk/walk.h"
 
 #include <algorithm>
@@ -26,10 +27,11 @@ constexpr int kStats = kOrders + 2;
 // Russian roulette: a path whose largest channel weight falls below this survives with the
 // probability weight/kRoulette and, if it does, carries kRoulette on.
 constexpr double kRoulette = 0.05;
-// A guard, never reached in practice: at α = 4 the mean path has under 20 bounces, and every
-// bounce past the first few leaves with a chance of a few percent at least.
+// A guard against a path that would never leave: past it the path's remaining weight is dropped.
+// Russian roulette ends paths long before (no test reaches it).
 constexpr int kMaxBounces = 1 << 16;
 
+// Per channel: the sums of the blocks' means and of their squares, statistic by statistic.
 struct Sums {
   std::array<double, kStats> sum{}, sum2{};
 };
