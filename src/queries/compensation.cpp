@@ -47,6 +47,12 @@ double compensated_albedo(Compensation c, const CompensationInputs& in) noexcept
     case Compensation::turquin_fresnel: return in.e_f * (1 + in.f_mu * missing);
     case Compensation::turquin_average: return in.e_f * (1 + in.f_avg * missing);
     case Compensation::cycles: return in.e_f * (1 + multiple_fresnel(in) * missing);
+    case Compensation::walk_fit: {
+      const double single = in.e > 0 ? in.e_f / in.e : 0;  // the Fresnel of the first bounce, averaged
+      const double first = std::max(single, in.f_avg), later = (single + in.f_avg) / 2;
+      const double leave = std::pow(in.e_avg, 0.7);
+      return in.e_f + (1 - in.e) * first * later * leave / (1 - later * (1 - leave));
+    }
   }
   return in.e_f;
 }

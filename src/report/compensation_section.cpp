@@ -136,8 +136,10 @@ Section compensation_section(Context& context) {
       "within 0.01 everywhere. The compensations: <code>kulla-conty</code> multiplies f<sub>ms</sub> by "
       "F<sub>avg</sub>² E<sub>avg</sub> / (1 − F<sub>avg</sub>(1 − E<sub>avg</sub>)); the Turquin forms scale "
       "f<sub>F</sub> by 1 + F (1 − E)/E with F0, F(θ) or F<sub>avg</sub>; <code>cycles</code> by 1 + "
-      "F<sub>ms</sub>(1 − E)/E. Dielectrics are a reflection lobe over an absorbing base; the metals are F82-tint "
-      "per RGB channel from their complex indices.</p>\n",
+      "F<sub>ms</sub>(1 − E)/E; <code>walk-fit</code>, derived from the walk's cells, keeps Kulla & Conty's series "
+      "with the first bounce's Fresnel max(E<sub>F</sub>/E, F<sub>avg</sub>), the later ones' the mean of the two "
+      "and E<sub>avg</sub><sup>0.7</sup> the chance to leave. Dielectrics are a reflection lobe over an absorbing "
+      "base; the metals are F82-tint per RGB channel from their complex indices.</p>\n",
       show(best_worst, 2));
   html += grazing_chart(context, v, s, links);
   html += fmt::format("<p class=\"files\">Files: {}. Regenerate: <code>specula verdict</code> (the summary), "

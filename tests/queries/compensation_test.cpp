@@ -4,6 +4,7 @@
 // is known (F = 1: the walk's total is 1).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "specula/analysis/fresnel.h"
@@ -22,6 +23,8 @@ TEST(Compensation, EachFormulaAtOnePoint) {
   EXPECT_DOUBLE_EQ(compensated_albedo(Compensation::turquin_fresnel, in), 0.3 * (1 + 0.55 * 0.4 / 0.6));
   EXPECT_DOUBLE_EQ(compensated_albedo(Compensation::turquin_average, in), 0.3 * (1 + 0.52 * 0.4 / 0.6));
   EXPECT_DOUBLE_EQ(compensated_albedo(Compensation::cycles, in), 0.3 * (1 + fms * 0.4 / 0.6));
+  const double single = 0.3 / 0.6, first = std::max(single, 0.52), later = (single + 0.52) / 2, p = std::pow(0.7, 0.7);
+  EXPECT_DOUBLE_EQ(compensated_albedo(Compensation::walk_fit, in), 0.3 + 0.4 * first * later * p / (1 - later * (1 - p)));
 }
 
 TEST(Compensation, EveryOneRestoresAWhiteFurnace) {

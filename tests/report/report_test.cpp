@@ -259,11 +259,11 @@ TEST_F(BeyondThePaperTest, FittedFormulasHoldTheirStatedError) {
 TEST_F(BeyondThePaperTest, MeasuresEveryCompensationAgainstTheWalk) {
   const std::string compensation = section("compensation");
   ASSERT_FALSE(compensation.empty());
-  for (const char* name : {"none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles"})
+  for (const char* name : {"none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit"})
     EXPECT_NE(compensation.find(fmt::format("<tr><td><code>{}</code></td>", name)), std::string::npos) << name;
   EXPECT_NE(compensation.find("<figure id=\"compensation-grazing\">\n<svg"), std::string::npos);
   const auto rows = csv("compensation-verdict.csv");
-  ASSERT_EQ(rows.size(), 1u + 5 * 6);  // five Fresnel families, six compensations
+  ASSERT_EQ(rows.size(), 1u + 5 * 7);  // five Fresnel families, seven compensations
   EXPECT_EQ(rows[0], (std::vector<std::string>{"family", "compensation", "max_error", "rms_error", "max_relative_ms",
                                                "max_walk_se", "cells"}));
   for (std::size_t r = 1; r < rows.size(); ++r) {

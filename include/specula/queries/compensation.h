@@ -27,10 +27,14 @@ enum class Compensation {
   turquin_fresnel,    ///< f_F · (1 + F(μ) (1 − E)/E) (libbsdl)
   turquin_average,    ///< f_F · (1 + F_avg (1 − E)/E) (MaterialX)
   cycles,             ///< f_F · (1 + F_ms (1 − E)/E), F_ms = F_avg E_avg / (1 − F_avg(1 − E_avg)) (Cycles)
+  /// Fitted here to the walk's cells (docs/energy-compensation.md): + (1 − E) · a · x p/(1 − x(1 − p)),
+  /// the first bounce's Fresnel a = max(E_F/E, F_avg), the later bounces' x = (E_F/E + F_avg)/2, and
+  /// p = E_avg^0.7 the chance to leave after each of them.
+  walk_fit,
 };
-inline constexpr std::size_t kCompensationCount = 6;
+inline constexpr std::size_t kCompensationCount = 7;
 inline constexpr std::array<std::string_view, kCompensationCount> kCompensationNames{
-    "none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles"};
+    "none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit"};
 
 /// What a compensation's albedo is made of at one μ.
 struct CompensationInputs {
