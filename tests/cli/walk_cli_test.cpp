@@ -1,5 +1,5 @@
 // `specula walk` as a user runs it: the table of the library's walk (walk_test.cpp proves the walk
-// itself), bad input in one line with exit 2, and Ctrl-C.
+// itself), `specula verdict`, bad input in one line with exit 2, and Ctrl-C.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -48,6 +48,17 @@ TEST_F(Cli, WalkOfADielectricPrintsReflectionTransmissionAndTheirSum) {
   const auto d = walk::dielectric_albedo({walk::Distribution::ggx, 0.4}, 1.5, std::cos(70 * std::numbers::pi / 180), options);
   EXPECT_THAT(r.out, HasSubstr(fmt::format("\"total\": {}", d.transmission.total.value)));
   EXPECT_THAT(r.out, HasSubstr(fmt::format("\"total\": {}", d.energy.total.value)));
+}
+
+TEST_F(Cli, VerdictPrintsEveryCompensationsErrorPerFamily) {
+  const Result r = ok({"verdict", "--alpha", "0.5", "--mu", "0.5", "--paths", "32768", "-q", "--format", "json"});
+  EXPECT_THAT(r.out, HasSubstr("\"compensation 6\": \"walk-fit\""));
+  EXPECT_THAT(r.out, HasSubstr("\"family 4\": \"aluminium\""));
+  const Result cells = ok({"verdict", "--alpha", "0.5", "--mu", "0.5", "--paths", "32768", "-q", "--cells"});
+  EXPECT_EQ(lines_of(cells.out).size(), 1u + 16);  // the header, one row per Fresnel channel
+  EXPECT_THAT(bad({"verdict", "--alpha", "2"}).err, HasSubstr("--alpha"));
+  EXPECT_THAT(bad({"verdict", "--mu", "0"}).err, HasSubstr("--mu"));
+  EXPECT_THAT(bad({"verdict", "--paths", "10"}).err, HasSubstr("--paths"));
 }
 
 TEST_F(Cli, WalkRefusesBadInputInOneLine) {
