@@ -12,11 +12,11 @@ import math
 import numpy as np
 
 from ._specula import (CheckResult, FitResult, Formula, Model, albedo, check, clear_models, error, export, glsl,
-                       load_models, lut, model, models, normalize, render)
+                       load_models, lut, model, models, normalize, render, walk)
 from ._specula import _check_sampling, _design, _fit
 
 __all__ = ["CheckResult", "DesignResult", "FitResult", "Formula", "Model", "albedo", "check", "check_sampling", "clear_models",
-           "design", "error", "export", "fit", "glsl", "load_models", "lut", "model", "models", "normalize",
+           "design", "error", "export", "fit", "glsl", "load_models", "lut", "model", "models", "normalize", "walk",
            "render", "SamplingCheck"]
 
 

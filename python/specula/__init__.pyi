@@ -108,6 +108,8 @@ def lut(model: ModelLike, mu: npt.ArrayLike | None = ..., sweep: dict[str, npt.A
 @overload
 def lut(model: ModelLike, mu: npt.ArrayLike | None = ..., sweep: dict[str, npt.ArrayLike] | None = ..., *,
         average: Literal[True]) -> tuple[npt.NDArray[np.float64], Any]: ...
+def walk(alpha: float, theta: float, fresnel: Sequence[str] = ..., distribution: Literal["ggx", "beckmann"] = ...,
+         paths: int = ..., seed: int = ..., dielectric: float | None = ...) -> dict[str, npt.NDArray[np.float64]]: ...
 def render(model: ModelLike, size: int | tuple[int, int] = ..., lights: Sequence[dict[str, Any]] | None = ...,
            env: str | npt.ArrayLike | None = ..., samples: int = ..., seed: int = ...,
            diffuse: Sequence[float] | None = ..., specular: Sequence[float] | None = ...,

@@ -4,11 +4,16 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <numbers>
+#include <optional>
 #include <vector>
 
 #include "binding.h"
+#include "specula/catalogue/fresnel_spec.h"
 #include "specula/exports/exports.h"
 #include "specula/queries/queries.h"
+#include "specula/walk/walk.h"
 
 namespace specula::python {
 
@@ -99,6 +104,48 @@ analysis::CheckResult check(const py::object& model, std::size_t pairs, std::uin
   return run_interruptible([&] { return queries::check_cases(q, Spelling::key); }).front().result;
 }
 
+// The walk's estimates as arrays: one row per channel, the orders 1, 2, 3, ≥ 4 in columns.
+py::dict walk_dict(const std::vector<walk::Albedo>& channels) {
+  const auto n = static_cast<py::ssize_t>(channels.size());
+  py::array_t<double> order({n, py::ssize_t{walk::kOrders}}), order_se({n, py::ssize_t{walk::kOrders}});
+  py::array_t<double> total(n), total_se(n), multiple(n), multiple_se(n);
+  for (py::ssize_t c = 0; c < n; ++c) {
+    const walk::Albedo& a = channels[std::size_t(c)];
+    for (int k = 0; k < walk::kOrders; ++k) {
+      order.mutable_at(c, k) = a.order[k].value;
+      order_se.mutable_at(c, k) = a.order[k].error;
+    }
+    total.mutable_at(c) = a.total.value, total_se.mutable_at(c) = a.total.error;
+    multiple.mutable_at(c) = a.multiple.value, multiple_se.mutable_at(c) = a.multiple.error;
+  }
+  py::dict d;
+  d["order"] = order, d["order_se"] = order_se, d["total"] = total, d["total_se"] = total_se;
+  d["multiple"] = multiple, d["multiple_se"] = multiple_se;
+  return d;
+}
+
+py::dict walk_albedo(double alpha, double theta, const std::vector<std::string>& fresnel, const std::string& distribution,
+                     std::uint64_t paths, std::uint64_t seed, std::optional<double> dielectric) {
+  if (distribution != "ggx" && distribution != "beckmann")
+    throw InvalidField("distribution", fmt::format("distribution must be 'ggx' or 'beckmann', got '{}'", distribution));
+  if (!(theta >= 0 && theta < 90)) throw InvalidField("theta", fmt::format("theta = {} is outside [0, 90)", theta));
+  const walk::Microsurface surface{distribution == "ggx" ? walk::Distribution::ggx : walk::Distribution::beckmann, alpha};
+  walk::Options options;
+  options.paths = paths;
+  options.seed = seed;
+  const double mu = std::cos(theta * std::numbers::pi / 180);
+  if (dielectric) {
+    if (!fresnel.empty()) throw InvalidField("fresnel", "a dielectric walk takes no fresnel channels");
+    const walk::DielectricAlbedo d =
+        run_interruptible([&] { return walk::dielectric_albedo(surface, *dielectric, mu, options); });
+    return walk_dict({d.reflection, d.transmission, d.energy});
+  }
+  std::vector<fresnel::Channel> channels;
+  for (const auto& spec : fresnel) channels.push_back(parse_fresnel(spec));
+  if (channels.empty()) channels.push_back({});
+  return walk_dict(run_interruptible([&] { return walk::conductor_albedo(surface, channels, mu, options); }));
+}
+
 std::string check_repr(const analysis::CheckResult& r) {
   return fmt::format("CheckResult(conserves_energy={}, reciprocal={}, non_negative={}, albedo_normal={:.9g}, "
                      "max_albedo={:.9g} at {:.4g}°, max_asymmetry={:.3g}, min_value={:.3g})",
@@ -124,6 +171,16 @@ void bind_analysis(py::module_& m) {
         "The largest error of the bare lobe against a reference lobe at each n (specula error): a dict\n"
         "of arrays n, max_abs, argmax_abs_deg, max_rel_epicenter, max_rel_attenuation.\n\n"
         ">>> specula.error('log', n=[20])['max_abs']\narray([0.125])");
+  m.def("walk", &walk_albedo, py::arg("alpha"), py::arg("theta"), py::arg("fresnel") = std::vector<std::string>{},
+        py::arg("distribution") = "ggx", py::arg("paths") = std::uint64_t{1} << 20, py::arg("seed") = 1,
+        py::arg("dielectric") = py::none(),
+        "The random walk on the Smith microsurface (specula walk, docs/random-walk.md): the directional\n"
+        "albedo at theta (degrees) of a rough conductor with each Fresnel channel ('one',\n"
+        "'schlick:f0=0.04', 'f82:f0=..,tint=..', 'dielectric:eta=..', 'conductor:eta=..,kappa=..'), or of\n"
+        "a dielectric interface of index `dielectric` (rows: reflection, transmission, their sum). A dict\n"
+        "of arrays, a row per channel: order (orders 1, 2, 3, >= 4), total, multiple, each with its _se.\n\n"
+        ">>> specula.walk(1.0, 0, paths=32768)['order'].round(3)  # alpha = 1 at normal incidence, F = 1\n"
+        "array([[0.307, 0.322, 0.211, 0.16 ]])");
   py::class_<analysis::CheckResult> check_result(m, "CheckResult",
                                                  "What specula check finds: the verdicts and their margins.");
   check_result.def_readonly("albedo_normal", &analysis::CheckResult::albedo_normal)

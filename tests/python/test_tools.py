@@ -119,6 +119,27 @@ def test_lut_is_the_clis(specula):
     assert default.shape == (32,) and np.allclose(default, 1, atol=1e-8)  # Lambert reflects everything
 
 
+def test_walk_is_the_clis(specula):
+    ref = cli("walk", "--alpha", "0.7", "--theta", "40", "-f", "one", "-f", "schlick:f0=0.04", "--paths", "32768",
+              "--format", "json")
+    w = specula.walk(0.7, 40, fresnel=["one", "schlick:f0=0.04"], paths=32768)
+    assert w["order"].shape == (2, 4) and w["total"].shape == (2,)
+    same(w["order"][:, 0], column(ref, "order1"))
+    same(w["total"], column(ref, "total"))
+    same(w["multiple_se"], column(ref, "multiple_se"))
+    assert abs(w["total"][0] - 1) < 3 * w["total_se"][0]  # F = 1 reflects everything
+    glass = specula.walk(0.3, 60, dielectric=1.5, paths=32768)
+    assert glass["total"].shape == (3,) and abs(glass["total"][2] - 1) < 3 * glass["total_se"][2] + 1e-10
+    with pytest.raises(ValueError, match="f0"):
+        specula.walk(0.5, 0, fresnel=["schlick:f0=2"], paths=32768)
+    with pytest.raises(ValueError, match="theta"):
+        specula.walk(0.5, 90, paths=32768)
+    with pytest.raises(ValueError, match="paths"):
+        specula.walk(0.5, 0, paths=10)
+    with pytest.raises(ValueError, match="distribution"):
+        specula.walk(0.5, 0, distribution="phong", paths=32768)
+
+
 def test_lut_refuses_bad_grids(specula):
     assert "outside" in cli_error("lut", "--model", "ggx", "--mu", "0,1")
     with pytest.raises(ValueError, match="mu"):
