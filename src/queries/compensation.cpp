@@ -86,7 +86,9 @@ std::vector<VerdictFresnel> verdict_fresnels() {
 Verdict verdict(const VerdictSettings& s) {
   if (s.alpha.empty() || s.mu.empty() || s.fresnels.empty()) throw InvalidArgument("the verdict needs α, μ and Fresnel values");
   if (s.distribution != walk::Distribution::ggx) throw InvalidArgument("the verdict measures GGX only");
-  std::vector<Channel> channels{Channel{}};  // F = 1 first: the walk's order 1 of it is E(μ) again
+  // F = 1 first, never read: Russian roulette follows a path's largest weight, so with it every
+  // Fresnel channel rides on the paths of the white walk (the same paths whatever the Fresnels).
+  std::vector<Channel> channels{Channel{}};
   for (const auto& f : s.fresnels) channels.push_back(f.channel);
   std::vector<double> f_avg;
   for (const auto& f : s.fresnels) f_avg.push_back(analysis::fresnel_average(f.channel).value);
