@@ -71,6 +71,12 @@ std::string text_report(const std::vector<queries::CheckCase>& cases, double las
     const Compensated* compensated = m.compensated();
     if (compensated && !compensated->table->compensates())
       out += "\n  energy compensation         does not apply: the base model reflects more than it receives";
+    else if (compensated && compensated->table->from_walk)
+      out += fmt::format("\n  energy compensation         the random walk's multiple scattering (F0 < 1), within {:.2g} of the walk",
+                         r.compensation_error);
+    else if (compensated && compensated->fresnel_scale != 1)
+      out += fmt::format("\n  energy compensation         Kulla-Conty's, F_ms = {:.4g} (F0 < 1: the albedo stays below 1)",
+                         compensated->fresnel_scale);
     else if (compensated)
       out += fmt::format("\n  energy compensation         albedo 1 within the table's error {:.2g}: max |ρ − 1| = {:.2g} on the θ_i grid",
                          r.compensation_error, r.max_deviation_from_one);

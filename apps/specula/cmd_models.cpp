@@ -39,6 +39,7 @@ void add_models_command(CLI::App& app) {
       "Lobe models are F(c) with a form (rv: c = R·V, nh: c = N·H) and a coefficient k;\n"
       "full BRDFs take directions. Any id M with +ms appended (ggx+ms, log-normalized+ms, a model of\n"
       "yours + ms) is M with Kulla-Conty energy compensation, a full BRDF whose albedo is 1\n"
+      "where F = 1; with f0 < 1 the returned energy is scaled by Kulla-Conty's Fresnel\n"
       "(docs/energy-compensation.md). Example:\n  specula models\n  specula models --json | jq '.[].id'");
   auto json = std::make_shared<bool>(false);
   auto out = std::make_shared<std::string>();

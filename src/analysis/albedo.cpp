@@ -200,12 +200,11 @@ double beckmann_slope(const FullBrdf& brdf) {
 /// every Cook-Torrance albedo.
 double beckmann_support(double m) { return std::atan(m * std::sqrt(50.0)); }
 
-/// ρ of M + f_ms is ρ_M plus f_ms's own albedo, which is separable and known exactly from the table
-/// (EnergyTable::ms_scale): (1 − E(μ_i))₊ · ms_scale.
+/// ρ of M + F_ms f_ms is ρ_M plus F_ms f_ms's own albedo, which is separable and known exactly from
+/// the table (EnergyTable::ms_scale): F_ms (1 − E(μ_i))₊ · ms_scale.
 Albedo compensated_albedo(const Compensated& model, double theta_i) {
   const Albedo base = albedo(*model.base, theta_i);
-  const double lost = std::max(0.0, 1 - model.table->at(std::cos(theta_i)));
-  return {base.value + lost * model.table->ms_scale, base.error_estimate, base.evaluations};
+  return {base.value + model.multiple_albedo(std::cos(theta_i)), base.error_estimate, base.evaluations};
 }
 
 }  // namespace

@@ -28,23 +28,6 @@ constexpr unsigned kAverageMaxDepth = 5;
 constexpr double kTableAverageTolerance = 1e-7;
 constexpr int kTableAverageLevels = 4;
 
-/// 2∫ (1 − at(μ))₊ μ dμ over the interpolant, exactly: in s = μ^(1/3) each piece is linear in s
-/// times 6 s⁵ ds, a polynomial of degree 6, which 4-point Gauss-Legendre integrates exactly.
-double lost_energy_of_table(const EnergyTable& table) {
-  static constexpr double x[] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double w[] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-  double total = 0;
-  const double n = static_cast<double>(EnergyTable::kNodes);
-  for (std::size_t piece = 0; piece < EnergyTable::kNodes; ++piece) {
-    const double a = static_cast<double>(piece) / n, b = static_cast<double>(piece + 1) / n;
-    for (int k = 0; k < 4; ++k) {
-      const double s = (a + b) / 2 + (b - a) / 2 * x[k];
-      total += (b - a) / 2 * w[k] * std::max(0.0, 1 - table.at(s * s * s)) * 6 * std::pow(s, 5);
-    }
-  }
-  return total;
-}
-
 /// E at each μ, in parallel; adds their integrand evaluations to `evaluations`.
 std::vector<double> albedos_at(const Model& model, std::span<const double> mu, std::size_t& evaluations) {
   const std::vector<Albedo> albedos = parallel_map(mu, [&](double m) { return albedo_at_mu(model, m); });
@@ -203,12 +186,13 @@ Albedo albedo_at_mu(const Model& model, double mu) {
 }
 
 Albedo average_albedo(const Model& model) {
-  // M+ms: its albedo is E_M(μ) + (1 − at(μ))₊ ms_scale, whose second part the table integrates
+  // M+ms: its albedo is E_M(μ) + F_ms (1 − at(μ))₊ ms_scale, whose second part the table integrates
   // exactly; integrating the sum adaptively chased the interpolant's 64 kinks (2000 albedos).
   if (const Compensated* compensated = model.compensated()) {
     const Albedo base = average_albedo(*compensated->base);
     const EnergyTable& table = *compensated->table;
-    return {base.value + table.ms_scale * lost_energy_of_table(table), base.error_estimate, base.evaluations};
+    return {base.value + compensated->fresnel_scale * table.ms_scale * table.lost_average(), base.error_estimate,
+            base.evaluations};
   }
   std::size_t evaluations = 0;
   auto integrand = [&](double s) {
@@ -236,7 +220,7 @@ EnergyTable energy_table(const Model& base, std::size_t* evaluations) {
   if (evaluations) *evaluations = spent + average.evaluations;
   table.e_avg = average.value;
   table.e_avg_error = average.error_estimate;
-  table.ms_scale = table.e_avg < 1 ? lost_energy_of_table(table) / (1 - table.e_avg) : 0;
+  table.ms_scale = table.e_avg < 1 ? table.lost_average() / (1 - table.e_avg) : 0;
   double deviation = 0;
   auto compensated = [&](double mu, double e) { return e + std::max(0.0, 1 - table.at(mu)) * table.ms_scale; };
   for (std::size_t j = 0; j < nodes.size(); ++j)

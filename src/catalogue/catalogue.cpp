@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "specula/analysis/energy.h"
+#include "specula/analysis/fresnel.h"
 #include "specula/exceptions.h"
 #include "specula/families/families.h"
 #include "specula/catalogue/model_file.h"
@@ -72,21 +73,55 @@ CompensatedInfos& compensated_infos() {
   return c;
 }
 
-/// M+ms: M's parameters; made as M at the same values and M's cached energy table (analysis/
-/// energy.h: the table is M's albedo, which is why the catalogue sits above analysis).
+/// The Fresnel of a built-in microfacet model with its F0 (the parameter "f0"): Schlick's for GGX
+/// and Cook-Torrance, the exact dielectric's with η from F0 for Cook-Torrance 1982. None for the
+/// other models (F ≡ 1, or a user's formula, whose parameters say nothing of a Fresnel).
+std::optional<fresnel::Channel> fresnel_of(const Model& model) {
+  if (model.is_lobe() || model.compensated() || !model.info().is_builtin()) return std::nullopt;
+  const FullBrdf& brdf = model.brdf();
+  if (const auto* m = std::get_if<Ggx>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
+  if (const auto* m = std::get_if<CookTorrance>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
+  if (const auto* m = std::get_if<CookTorrance1982>(&brdf)) {
+    if (m->f0 >= 1) return fresnel::Channel{};
+    const double r = std::sqrt(m->f0);
+    return fresnel::Channel{.kind = fresnel::Kind::dielectric, .eta = (1 + r) / (1 - r)};
+  }
+  return std::nullopt;
+}
+
+/// M with F = 1 where M has a Fresnel (its f0 set to 1), else M itself: whose table M+ms uses.
+ParamValues white_params(const ModelInfo& base, ParamValues params, const std::optional<fresnel::Channel>& f) {
+  if (f && base.find_param("f0")) params["f0"] = 1;
+  return params;
+}
+
+/// The table and F_ms of M+ms (models/compensated.h). GGX with F0 < 1: the random walk's own
+/// multiply scattered albedo (analysis::ggx_walk_table), F_ms = 1. Any other model with a Fresnel:
+/// the cached energy table of M with F = 1 and Kulla & Conty's F_ms from M's F_avg. Any other
+/// model: its own table (analysis/energy.h: the table is M's albedo, which is why the catalogue
+/// sits above analysis).
+Compensated compensation_of(const ModelInfo& base, const ParamValues& params, std::shared_ptr<const Model> model) {
+  const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
+  const std::optional<fresnel::Channel> f = fresnel_of(*model);
+  if (const auto* ggx = f ? std::get_if<Ggx>(&model->brdf()) : nullptr; ggx && ggx->f0 < 1)  // f: a full BRDF
+    return {std::move(model), std::make_shared<const EnergyTable>(analysis::ggx_walk_table(ggx->alpha, ggx->f0)), 1.0};
+  auto table = analysis::cached_energy_table(make_model(listed, white_params(base, params, f)));
+  const double scale = f ? kulla_conty_fresnel(analysis::fresnel_average(*f).value, table->e_avg) : 1.0;
+  return {std::move(model), std::move(table), scale};
+}
+
+/// M+ms: M's parameters; made as M at the same values with compensation_of's table and F_ms.
 ModelInfo compensated_info(const ModelInfo& base) {
   ModelInfo info{base.id + std::string(kCompensatedSuffix), base.name + " + multiple scattering",
-                 fmt::format("{} with Kulla-Conty energy compensation (albedo 1)", base.id),
+                 fmt::format("{} with Kulla-Conty energy compensation (albedo 1 where F = 1)", base.id),
                  base.source + "; Kulla & Conty 2017", ModelKind::brdf, base.form, Normalization::none, "1",
                  base.params, {}, nullptr, base.origin};
   info.make = [&base](std::span<const double> values) -> ModelImpl {
     ParamValues params;
     for (std::size_t i = 0; i < values.size(); ++i) params[base.params[i].name] = values[i];
     // Registry entries live as long as the process (user ones until cleared, with this entry).
-    auto base_model = std::make_shared<const Model>(
-        make_model(std::shared_ptr<const ModelInfo>(std::shared_ptr<const ModelInfo>(), &base), params));
-    auto table = analysis::cached_energy_table(*base_model);
-    return Compensated{std::move(base_model), std::move(table)};
+    const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
+    return compensation_of(base, params, std::make_shared<const Model>(make_model(listed, params)));
   };
   return info;
 }

@@ -196,7 +196,7 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
 void add_entry(ShaderSource& src, const Target& target, const Model& model);
 
 /// M+ms: M's entry, its energy table as a chain of linear pieces (E at M's bound parameter
-/// values), and the entry f_M + f_ms (models/compensated.h).
+/// values, F0 = 1 where M has a Fresnel), and the entry f_M + F_ms f_ms (models/compensated.h).
 void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
   const Model& base = *compensated.base;
   add_entry(src, target, base);
@@ -210,20 +210,27 @@ void add_compensated_entry(ShaderSource& src, const Target& target, const Model&
     pieces += fmt::format("  if (t < {}.0) return {} + ({}) * (t - {}.0);\n", j + 1, lit(e[j]), lit(e[j + 1] - e[j]), j);
   pieces += fmt::format("  return {} + ({}) * (t - {}.0);\n", lit(e[e.size() - 2]), lit(e.back() - e[e.size() - 2]),
                         e.size() - 2);
+  const bool coloured = compensated.fresnel_scale != 1;  // M's Fresnel below 1: E is M's at F0 = 1
+  const std::string what = table.from_walk ? "1 - E_ms(mu), E_ms the random walk's multiply scattered albedo,"
+                                           : "E(mu)";
   src.add(name + "_energy",
-          fmt::format("// E(mu) of {} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
-                      "// max interpolation error {:.2g} (specula lut). Kulla & Conty 2017.\n"
+          fmt::format("// {} of {}{} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
+                      "// max interpolation error {:.2g} ({}). Kulla & Conty 2017.\n"
                       "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n{}}}",
-                      expr::comment_text(base.id()), n, n, table.interpolation_error, name, n, pieces));
-  const double ms_factor = table.e_avg < 1 ? 1 / (kPi * (1 - table.e_avg)) : 0.0;
+                      what, expr::comment_text(base.id()), coloured ? " with F0 = 1" : "", n, n, table.interpolation_error,
+                      table.from_walk ? "against the walk, Heitz et al. 2016" : "specula lut", name, n, pieces));
+  const double ms_factor = table.e_avg < 1 ? compensated.fresnel_scale / (kPi * (1 - table.e_avg)) : 0.0;
   const std::string names = parameter_names(base.info());
-  src.add(name, fmt::format("// {}: f = f_{} + (1 - E(N.L))(1 - E(N.V)) / (pi (1 - E_avg)), E_avg = {:.9g}; the table holds E\n"
+  const std::string fresnel =
+      coloured ? fmt::format(", F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) = {:.9g}", compensated.fresnel_scale) : "";
+  src.add(name, fmt::format("// {}: f = f_{} + {}(1 - E(N.L))(1 - E(N.V)) / (pi (1 - E_avg)), E_avg = {:.9g}{}; the table holds E\n"
                             "// at the parameter values it was made for only. Source: Kulla & Conty 2017.\n"
                             "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
                             "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n"
                             "  float ms = max(0.0, 1.0 - {}_energy(nl)) * max(0.0, 1.0 - {}_energy(nv)) * {};\n"
                             "  return {}(N, L, V{}{}) + ms;\n}}",
-                            expr::comment_text(model.info().name), expr::comment_text(base.id()), table.e_avg, name,
+                            expr::comment_text(model.info().name), expr::comment_text(base.id()), coloured ? "F_ms " : "",
+                            table.e_avg, fresnel, name,
                             parameter_list(model.info()), name, name,
                             lit(ms_factor), entry_name(base), names.empty() ? "" : ", ", names));
 }

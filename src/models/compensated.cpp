@@ -1,4 +1,4 @@
-// The energy table's interpolation and Kulla & Conty's multiple-scattering lobe
+// The energy table's interpolation and Kulla & Conty's multiple-scattering lobe with its Fresnel
 // (models/compensated.h); the table's values come from analysis/energy.h.
 #include "specula/models/compensated.h"
 
@@ -35,10 +35,37 @@ bool EnergyTable::compensates() const noexcept {
   return e_avg < 1 && std::all_of(e.begin(), e.end(), [](double x) { return x <= 1 + 1e-7; });
 }
 
+double EnergyTable::lost_average() const noexcept {
+  static constexpr double x[] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+  static constexpr double w[] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+  double total = 0;
+  for (std::size_t piece = 0; piece < kNodes; ++piece) {
+    const double a = static_cast<double>(piece) / kNodeCount, b = static_cast<double>(piece + 1) / kNodeCount;
+    for (int k = 0; k < 4; ++k) {
+      const double s = (a + b) / 2 + (b - a) / 2 * x[k];
+      total += (b - a) / 2 * w[k] * std::max(0.0, 1 - at(s * s * s)) * 6 * std::pow(s, 5);
+    }
+  }
+  return total;
+}
+
 double EnergyTable::multiple_scattering(double mu_i, double mu_o) const noexcept {
   if (!(e_avg < 1)) return 0;
   const double lost_i = std::max(0.0, 1 - at(mu_i)), lost_o = std::max(0.0, 1 - at(mu_o));
   return lost_i * lost_o / (std::numbers::pi * (1 - e_avg));
+}
+
+double kulla_conty_fresnel(double f_avg, double e_avg) noexcept {
+  const double stays = 1 - f_avg * (1 - e_avg);  // ≥ E_avg: 0 only for F_avg = 1, E_avg = 0
+  return stays > 0 ? f_avg * f_avg * e_avg / stays : 1;
+}
+
+double Compensated::multiple_scattering(double mu_i, double mu_o) const noexcept {
+  return fresnel_scale * table->multiple_scattering(mu_i, mu_o);
+}
+
+double Compensated::multiple_albedo(double mu_i) const noexcept {
+  return fresnel_scale * std::max(0.0, 1 - table->at(mu_i)) * table->ms_scale;
 }
 
 std::string_view compensated_base_id(std::string_view id) noexcept {

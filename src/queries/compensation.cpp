@@ -12,6 +12,7 @@
 #include "specula/catalogue/fresnel_spec.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
+#include "specula/models/compensated.h"
 
 namespace specula::queries {
 
@@ -41,8 +42,9 @@ double compensated_albedo(Compensation c, const CompensationInputs& in) noexcept
   switch (c) {
     case Compensation::none: return in.e_f;
     case Compensation::kulla_conty:
-      // f_ms's albedo is 1 − E(μ) (f_ms = (1 − E(μ_i))(1 − E(μ_o))/(π(1 − E_avg))), times F_avg F_ms.
-      return in.e_f + (1 - in.e) * in.f_avg * multiple_fresnel(in);
+      // f_ms's albedo is 1 − E(μ) (f_ms = (1 − E(μ_i))(1 − E(μ_o))/(π(1 − E_avg))), times F_avg F_ms:
+      // what M+ms ships (models/compensated.h).
+      return in.e_f + (1 - in.e) * kulla_conty_fresnel(in.f_avg, in.e_avg);
     case Compensation::turquin_f0: return in.e_f * (1 + in.f0 * missing);
     case Compensation::turquin_fresnel: return in.e_f * (1 + in.f_mu * missing);
     case Compensation::turquin_average: return in.e_f * (1 + in.f_avg * missing);

@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "specula/analysis/albedo.h"
 #include "specula/analysis/fresnel.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/queries/compensation.h"
+#include "specula/walk/walk.h"
 
 namespace specula::queries {
 namespace {
@@ -68,6 +71,66 @@ TEST(Compensation, AgainstAWhiteWalkEveryCompensationIsWithinItsError) {
   EXPECT_EQ(t.rows.size(), kCompensationCount);
   s.alpha.clear();
   EXPECT_THROW(verdict(s), InvalidArgument);
+}
+
+// `ggx+ms` at F0 < 1 gives back the random walk's own multiply scattered albedo (the table of
+// scripts/make_walk_ms_table), so its albedo is the walk's within the table's stated error, which
+// is within the 0.01 issue 39 asks for. Checked against fresh walks (seed 3, 2^15 paths a cell,
+// about 2 s under the sanitizers) off the table's nodes, at the cells where the published
+// compensations miss most (docs/energy-compensation.md). The control: the verdict's best
+// published formula for Schlick (`cycles`) fails the same check at the smooth grazing cell.
+TEST(Compensation, GgxMsAtF0BelowOneIsTheWalksAlbedo) {
+  struct Cell {
+    double alpha, mu, f0;
+  };
+  const auto walk_total = [](const Cell& c) {
+    const fresnel::Channel f{fresnel::Kind::schlick, c.f0};
+    walk::Options o;
+    o.paths = walk::kMinPaths;
+    o.seed = 3;
+    return walk::conductor_albedo({walk::Distribution::ggx, c.alpha}, {&f, 1}, c.mu, o)[0].total;
+  };
+  const Cell smooth_grazing{0.05, 0.05, 0.04};
+  for (const Cell c : {smooth_grazing, Cell{0.3, 1, 0.04}, Cell{1, 1, 0.04}, Cell{1, 0.5, 0.5}, Cell{0.5, 0.7, 0.9},
+                       Cell{0.1, 0.17, 0.2}, Cell{0.72, 0.3, 0.33}}) {
+    SCOPED_TRACE(testing::Message() << "alpha " << c.alpha << ", mu " << c.mu << ", F0 " << c.f0);
+    const Model ms = make_model("ggx+ms", {{"alpha", c.alpha}, {"f0", c.f0}});
+    const EnergyTable& table = *ms.compensated()->table;
+    ASSERT_TRUE(table.from_walk);
+    EXPECT_LE(table.albedo_error, 0.01);
+    const walk::Estimate truth = walk_total(c);
+    EXPECT_NEAR(analysis::albedo(ms, std::acos(c.mu)).value, truth.value, table.albedo_error + 4 * truth.error);
+  }
+  const Model white = make_model("ggx+ms", {{"alpha", smooth_grazing.alpha}, {"f0", 1}});
+  const Model ggx = make_model("ggx", {{"alpha", smooth_grazing.alpha}, {"f0", smooth_grazing.f0}});
+  const fresnel::Channel f{fresnel::Kind::schlick, smooth_grazing.f0};
+  const EnergyTable& e = *white.compensated()->table;
+  const CompensationInputs in{e.at(smooth_grazing.mu), e.e_avg, analysis::albedo(ggx, std::acos(smooth_grazing.mu)).value,
+                              f(smooth_grazing.mu), smooth_grazing.f0, analysis::fresnel_average(f).value};
+  const walk::Estimate truth = walk_total(smooth_grazing);
+  EXPECT_GT(std::abs(compensated_albedo(Compensation::cycles, in) - truth.value), 0.01 + 4 * truth.error);
+  EXPECT_FALSE(white.compensated()->table->from_walk) << "F0 = 1: the cubature's white table, albedo 1";
+}
+
+// The other models with a Fresnel (Cook-Torrance's Schlick F0) ship the verdict's `kulla-conty`:
+// the white table (one for every F0) and F_ms from F0's F_avg. Checked against the formula on
+// inputs computed apart (the white model's cubature albedo, F_avg's closed form); the control,
+// the white lobe's lost energy all given back (F_ms = 1, what M+ms did before it knew of
+// Fresnel), misses by far more than the table's error.
+TEST(Compensation, CookTorranceMsAtF0BelowOneIsKullaConty) {
+  for (const double f0 : {0.04, 0.5}) {
+    const Model ms = make_model("cook-torrance+ms", {{"m", 0.4}, {"f0", f0}});
+    const Compensated& parts = *ms.compensated();
+    EXPECT_EQ(parts.table, make_model("cook-torrance+ms", {{"m", 0.4}, {"f0", 1}}).compensated()->table);
+    const double theta = 1.0;
+    const double e = analysis::albedo(make_model("cook-torrance", {{"m", 0.4}, {"f0", 1}}), theta).value;
+    const double single = analysis::albedo(*parts.base, theta).value;
+    const double f_avg = f0 + (1 - f0) / 21;
+    const CompensationInputs in{e, parts.table->e_avg, single, 0, f0, f_avg};
+    const double albedo = analysis::albedo(ms, theta).value;
+    EXPECT_NEAR(albedo, compensated_albedo(Compensation::kulla_conty, in), parts.table->albedo_error);
+    EXPECT_GT(std::abs(single + (1 - e) - albedo), 10 * parts.table->albedo_error);  // the control
+  }
 }
 
 }  // namespace

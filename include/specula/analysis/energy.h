@@ -37,6 +37,14 @@ std::shared_ptr<const EnergyTable> cached_energy_table(const Model& base);
 /// Forgets the cached tables (the registry does when user models are cleared).
 void clear_energy_tables();
 
+/// `ggx+ms` at F0 < 1: the table whose 1 − E is the random walk's multiply scattered albedo
+/// E_ms(μ) of GGX at α with Schlick's F0 (src/analysis/ggx_walk_ms.inc, made by
+/// scripts/make_walk_ms_table), so that f_ms gives back E_ms itself: at the 64 nodes, bilinear
+/// in (√α, F0) between the walk's; E_avg = 1 − 2∫E_ms μ dμ exactly, so ms_scale = 1;
+/// interpolation_error and albedo_error the table's stated error against the walk, measured
+/// midway between its nodes. α ∈ [1e-3, 1] and F0 ∈ [0, 1] (clamped to them).
+EnergyTable ggx_walk_table(double alpha, double f0);
+
 /// The documented size of a table (docs/robustness.md, measured): 65536 cells of Cook-Torrance,
 /// the costliest built-in albedo, take about a minute on two idle cores; an E_avg costs 100-400
 /// cells, so at most 256 of them. Every interface (specula lut, import specula) keeps to these.

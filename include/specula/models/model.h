@@ -154,11 +154,11 @@ class Model {
   static double eval(const FullBrdf& b, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
     return std::visit([&](const auto& brdf) { return brdf(n, l, v); }, b);
   }
-  /// f_M + f_ms (models/compensated.h).
+  /// f_M + F_ms f_ms (models/compensated.h).
   static double eval(const Compensated& c, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
     const double nl = dot(n, l), nv = dot(n, v);
     if (nl <= 0 || nv <= 0) return 0;
-    return (*c.base)(n, l, v) + c.table->multiple_scattering(nl, nv);
+    return (*c.base)(n, l, v) + c.multiple_scattering(nl, nv);
   }
 
   std::shared_ptr<const ModelInfo> info_;
