@@ -27,6 +27,11 @@ double multiple_fresnel(const CompensationInputs& in) noexcept {
   return in.f_avg * in.e_avg / (1 - in.f_avg * (1 - in.e_avg));
 }
 
+// Whether `ggx+ms` has this Fresnel: GGX's Schlick with F90 = 1 and exponent 5.
+bool ggx_schlick(walk::Distribution d, const Channel& f) {
+  return d == walk::Distribution::ggx && f.kind == Kind::schlick && f.f90 == 1 && f.exponent == 5;
+}
+
 // A metal's F82-tint from its complex index: F0 = F(1), tint = F(1/7) / Schlick(1/7) (clamped to
 // the channel's [0, 1]).
 Channel f82_of_metal(double eta, double kappa) {
@@ -55,6 +60,7 @@ double compensated_albedo(Compensation c, const CompensationInputs& in) noexcept
       const double leave = std::pow(in.e_avg, 0.7);
       return in.e_f + (1 - in.e) * first * later * leave / (1 - later * (1 - leave));
     }
+    case Compensation::shipped: return in.shipped;
   }
   return in.e_f;
 }
@@ -124,13 +130,16 @@ Verdict verdict(const VerdictSettings& s) {
       for (std::size_t k = 0; k < s.fresnels.size(); ++k) {
         const walk::Albedo& w = walked[k + 1];
         const Channel& f = s.fresnels[k].channel;
-        const CompensationInputs in{e, e_avg, w.order[0].value, f(mu), f(1.0), f_avg[k]};
+        CompensationInputs in{e, e_avg, w.order[0].value, f(mu), f(1.0), f_avg[k]};
+        if (ggx_schlick(s.distribution, f))
+          in.shipped = analysis::albedo(make_model("ggx+ms", {{"alpha", alpha}, {"f0", f.f0}}), std::acos(mu)).value;
         const double truth = w.total.value;
         std::vector<double> row{alpha, mu, double(k), in.f_mu, in.f0, in.f_avg, e, e_avg, w.order[0].value,
                                 w.order[0].error, w.multiple.value, w.multiple.error};
         for (std::size_t c = 0; c < kCompensationCount; ++c) {
           const double a = compensated_albedo(Compensation(c), in);
           row.push_back(a);
+          if (std::isnan(a)) continue;  // does not apply here
           Errors& err = errors[k][c];
           const double d = std::abs(a - truth);
           err.max = std::max(err.max, d);
@@ -161,7 +170,8 @@ Verdict verdict(const VerdictSettings& s) {
         sum2 += e.sum2;
         sum.cells += e.n;
       }
-      sum.rms_error = std::sqrt(sum2 / double(sum.cells));
+      if (sum.cells == 0) sum.max_error = sum.rms_error = sum.max_relative_ms = sum.max_walk_error = NAN;
+      else sum.rms_error = std::sqrt(sum2 / double(sum.cells));
       v.summary.push_back(sum);
     }
   return v;

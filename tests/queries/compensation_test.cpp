@@ -35,8 +35,10 @@ TEST(Compensation, EveryOneRestoresAWhiteFurnace) {
     for (double e_avg : {0.4, 0.9}) {
       const CompensationInputs white{e, e_avg, e, 1, 1, 1};
       EXPECT_LT(compensated_albedo(Compensation::none, white), 1);  // the control: it loses energy
-      for (std::size_t c = 1; c < kCompensationCount; ++c)
+      for (std::size_t c = 1; c < kCompensationCount; ++c) {
+        if (Compensation(c) == Compensation::shipped) continue;  // a model's albedo, not a formula in these inputs
         EXPECT_NEAR(compensated_albedo(Compensation(c), white), 1, 1e-15) << kCompensationNames[c];
+      }
     }
 }
 
@@ -63,6 +65,10 @@ TEST(Compensation, AgainstAWhiteWalkEveryCompensationIsWithinItsError) {
   for (const auto& sum : v.summary) {
     if (sum.compensation == Compensation::none) {
       EXPECT_GT(sum.max_error, 0.3);  // α = 1 at normal incidence loses 69 %
+      continue;
+    }
+    if (sum.compensation == Compensation::shipped) {
+      EXPECT_EQ(sum.cells, 0u) << "ggx+ms has Schlick's Fresnel, not F = 1 as such";
       continue;
     }
     EXPECT_LT(sum.max_error, 4 * sum.max_walk_error + 1e-6) << kCompensationNames[std::size_t(sum.compensation)];
@@ -110,6 +116,25 @@ TEST(Compensation, GgxMsAtF0BelowOneIsTheWalksAlbedo) {
   const walk::Estimate truth = walk_total(smooth_grazing);
   EXPECT_GT(std::abs(compensated_albedo(Compensation::cycles, in) - truth.value), 0.01 + 4 * truth.error);
   EXPECT_FALSE(white.compensated()->table->from_walk) << "F0 = 1: the cubature's white table, albedo 1";
+}
+
+// The verdict measures what ships where it applies (Schlick's F0): within the table's stated error of
+// the walk at the grid's corners, where the best published formula for Schlick misses by more.
+TEST(Compensation, TheVerdictMeasuresWhatShips) {
+  VerdictSettings s;
+  s.alpha = {0.05, 1.0};
+  s.mu = {0.05, 1.0};
+  s.fresnels = {verdict_fresnels()[0]};  // Schlick F0 = 0.04
+  s.paths = walk::kMinPaths;
+  const Verdict v = verdict(s);
+  const auto summary = [&](Compensation c) {
+    return *std::find_if(v.summary.begin(), v.summary.end(), [&](const auto& sum) { return sum.compensation == c; });
+  };
+  const VerdictSummary shipped = summary(Compensation::shipped), cycles = summary(Compensation::cycles);
+  EXPECT_EQ(shipped.cells, 4u);
+  const double stated = make_model("ggx+ms", {{"f0", 0.04}}).compensated()->table->albedo_error;
+  EXPECT_LE(shipped.max_error, stated + 4 * shipped.max_walk_error);
+  EXPECT_GT(cycles.max_error, stated + 4 * cycles.max_walk_error);  // the control
 }
 
 // The other models with a Fresnel (Cook-Torrance's Schlick F0) ship the verdict's `kulla-conty`:

@@ -259,14 +259,21 @@ TEST_F(BeyondThePaperTest, FittedFormulasHoldTheirStatedError) {
 TEST_F(BeyondThePaperTest, MeasuresEveryCompensationAgainstTheWalk) {
   const std::string compensation = section("compensation");
   ASSERT_FALSE(compensation.empty());
-  for (const char* name : {"none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit"})
+  for (const char* name : {"none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit", "ggx+ms"})
     EXPECT_NE(compensation.find(fmt::format("<tr><td><code>{}</code></td>", name)), std::string::npos) << name;
   EXPECT_NE(compensation.find("<figure id=\"compensation-grazing\">\n<svg"), std::string::npos);
   const auto rows = csv("compensation-verdict.csv");
-  ASSERT_EQ(rows.size(), 1u + 5 * 7);  // five Fresnel families, seven compensations
+  ASSERT_EQ(rows.size(), 1u + 5 * 8);  // five Fresnel families, seven compensations and what ships
   EXPECT_EQ(rows[0], (std::vector<std::string>{"family", "compensation", "max_error", "rms_error", "max_relative_ms",
                                                "max_walk_se", "cells"}));
   for (std::size_t r = 1; r < rows.size(); ++r) {
+    if (rows[r][1] == "ggx+ms") {  // Schlick's Fresnel only: within the table's stated error (and the walk's)
+      EXPECT_EQ(rows[r][6] != "0", rows[r][0] == "schlick") << rows[r][0];
+      if (rows[r][0] == "schlick") {
+        EXPECT_LT(std::stod(rows[r][2]), 0.01);
+      }
+      continue;
+    }
     EXPECT_LT(std::stod(rows[r][5]), 1e-3) << rows[r][0] << " " << rows[r][1];  // the walk is the reference
     if (rows[r][1] == "none") {
       if (rows[r][0] != "dielectric") {

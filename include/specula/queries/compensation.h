@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,10 +32,14 @@ enum class Compensation {
   /// the first bounce's Fresnel a = max(E_F/E, F_avg), the later bounces' x = (E_F/E + F_avg)/2, and
   /// p = E_avg^0.7 the chance to leave after each of them.
   walk_fit,
+  /// What specula ships: `ggx+ms`, whose f_ms gives back the walk's own multiply scattered albedo
+  /// from a table (models/compensated.h). Its model has Schlick's Fresnel (F90 = 1, exponent 5), so
+  /// it is measured on those cells only; elsewhere its albedo is NaN and its cells are not counted.
+  shipped,
 };
-inline constexpr std::size_t kCompensationCount = 7;
+inline constexpr std::size_t kCompensationCount = 8;
 inline constexpr std::array<std::string_view, kCompensationCount> kCompensationNames{
-    "none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit"};
+    "none", "kulla-conty", "turquin-f0", "turquin-f", "turquin-favg", "cycles", "walk-fit", "ggx+ms"};
 
 /// What a compensation's albedo is made of at one μ.
 struct CompensationInputs {
@@ -44,9 +49,10 @@ struct CompensationInputs {
   double f_mu = 1;   ///< F(μ)
   double f0 = 1;     ///< F(1)
   double f_avg = 1;  ///< F_avg
+  double shipped = std::numeric_limits<double>::quiet_NaN();  ///< ggx+ms's albedo here, where it applies
 };
 
-/// The directional albedo of `c` at the inputs' μ.
+/// The directional albedo of `c` at the inputs' μ (for `shipped`, the inputs' `shipped`).
 double compensated_albedo(Compensation c, const CompensationInputs& in) noexcept;
 
 /// A Fresnel the verdict measures, with the family its errors are summarized in.
@@ -80,7 +86,7 @@ struct VerdictSummary {
   double max_error = 0, rms_error = 0;
   double max_relative_ms = 0;   ///< max |A − truth| / E_ms over cells with E_ms > 1e-3
   double max_walk_error = 0;    ///< the walk's largest standard error on E_ms in these cells
-  std::size_t cells = 0;
+  std::size_t cells = 0;         ///< cells measured (0: the compensation does not apply to the family)
 };
 
 struct Verdict {
