@@ -1,13 +1,18 @@
 // specula lut: energy-compensation tables, the directional albedo E(μ, p) of a model on a grid of
 // μ = cos θ_i and one parameter p, with E_avg(p), as CSV/JSON, an image or ready-to-paste code.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <fmt/format.h>
 
+#include "build_info.h"
 #include "cli.h"
 #include "lut_code.h"
 #include "specula/analysis/energy.h"
 #include "specula/exceptions.h"
+#include "specula/expr/comment.h"
+#include "specula/io/sha256.h"
 #include "specula/render/image_io.h"
 
 namespace specula::cli {
@@ -99,8 +104,22 @@ std::string joined(const std::vector<double>& v) {
   return text;
 }
 
-render::Metadata image_metadata(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep) {
-  render::Metadata meta{{"Software", "specula"}, {"model", o.model.id}, {"layout", "x: mu, y: " + (sweep.name.empty() ? std::string("-") : sweep.name) + " (top row first)"},
+/// Where a table came from, in every file: the command that makes it again, specula's version and
+/// the SHA-256 of its values (E p-major, then E_avg, as little-endian doubles: io/sha256.h).
+struct Provenance {
+  std::string command, version, sha256;
+};
+
+/// One line (an inline formula's line breaks made spaces), for a comment.
+std::string provenance_line(const Provenance& p) {
+  return expr::comment_text(fmt::format("{}; specula {}; sha256 of the values {}", p.command, p.version, p.sha256));
+}
+
+render::Metadata image_metadata(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep,
+                                const Provenance& provenance) {
+  render::Metadata meta{{"Software", "specula " + provenance.version}, {"command", provenance.command},
+                        {"sha256", provenance.sha256}, {"model", o.model.id},
+                        {"layout", "x: mu, y: " + (sweep.name.empty() ? std::string("-") : sweep.name) + " (top row first)"},
                         {"mu", joined(lut.mu)}};
   for (const auto& p : o.model.params) meta.emplace_back("param", p);
   if (!sweep.name.empty()) meta.emplace_back(sweep.name, joined(lut.p));
@@ -108,23 +127,24 @@ render::Metadata image_metadata(const LutOptions& o, const analysis::AlbedoLut& 
   return meta;
 }
 
-void write_exr_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep) {
+void write_exr_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep, const Provenance& provenance) {
   render::Image image(static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size()));
   for (std::size_t i = 0; i < lut.p.size(); ++i)
     for (std::size_t j = 0; j < lut.mu.size(); ++j) {
       const double e = lut.at(i, j);
       image.set(static_cast<int>(j), static_cast<int>(i), {e, e, e});
     }
-  render::write_exr(o.out, image, render::ExrPixel::float32, image_metadata(o, lut, sweep));
+  render::write_exr(o.out, image, o.format == "exr-half" ? render::ExrPixel::half : render::ExrPixel::float32,
+                    image_metadata(o, lut, sweep, provenance));
 }
 
 /// 16-bit codes round(65535 E / scale), scale = 1, or max E when a model reflects more than it
 /// receives; the scale is in the metadata and on stderr.
-void write_png16_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep) {
+void write_png16_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep, const Provenance& provenance) {
   const double scale = std::max(1.0, *std::max_element(lut.e.begin(), lut.e.end()));
   std::vector<std::uint16_t> codes;
   for (const double e : lut.e) codes.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(e / scale, 0.0, 1.0) * 65535)));
-  render::Metadata meta = image_metadata(o, lut, sweep);
+  render::Metadata meta = image_metadata(o, lut, sweep, provenance);
   meta.emplace_back("scale", fmt::format("E = code / 65535 * {}", io::format_number(scale)));
   render::write_png16(o.out, static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size()), codes, meta);
   if (!o.quiet) fmt::print(stderr, "lut: 16-bit codes, E = code / 65535 * {}\n", io::format_number(scale));
@@ -144,8 +164,35 @@ std::string command_line(const LutOptions& o) {
   return text;
 }
 
+/// NumPy's .npy (format 1.0): E as little-endian float64 of shape (p, mu), or (mu) for one row.
+/// Its header takes no other keys, so the provenance goes to stderr (unless --quiet).
+std::string npy_of(const analysis::AlbedoLut& lut, const Sweep& sweep) {
+  const std::string shape = sweep.name.empty() ? fmt::format("({},)", lut.mu.size())
+                                               : fmt::format("({}, {})", lut.p.size(), lut.mu.size());
+  std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': {}, }}", shape);
+  header.append(63 - (10 + header.size()) % 64, ' ');  // the data starts on a multiple of 64 bytes
+  header += '\n';
+  std::string out = "\x93NUMPY";
+  out += '\x01';
+  out += '\x00';
+  out += static_cast<char>(header.size() & 0xff);
+  out += static_cast<char>(header.size() >> 8);
+  out += header;
+  for (const double e : lut.e) {
+    const auto bits = std::bit_cast<std::uint64_t>(e);
+    for (int b = 0; b < 8; ++b) out += static_cast<char>((bits >> (8 * b)) & 0xff);
+  }
+  return out;
+}
+
+Provenance provenance_of(const LutOptions& o, const analysis::AlbedoLut& lut) {
+  std::vector<double> values = lut.e;
+  values.insert(values.end(), lut.e_avg.begin(), lut.e_avg.end());
+  return {command_line(o), std::string(build_version()), io::sha256_of_doubles(values)};
+}
+
 void run(const LutOptions& o) {
-  if ((o.format == "exr" || o.format == "png16") && o.out.empty())
+  if ((o.format == "exr" || o.format == "exr-half" || o.format == "png16" || o.format == "npy") && o.out.empty())
     throw InvalidArgument(fmt::format("--format {} needs --out FILE", o.format));
   const Sweep sweep = sweep_of(o);
   const std::vector<double> mu = option_values("--mu", o.mu, kMaxLutAxisValues);
@@ -158,21 +205,30 @@ void run(const LutOptions& o) {
   if (o.average && sweep.values.size() > kMaxLutAverages)
     throw InvalidArgument(fmt::format("--average: {} values of {} is more than {} (each E_avg costs 100-400 cells)",
                                       sweep.values.size(), sweep.name, kMaxLutAverages));
-  const bool code = o.format == "cpp" || o.format == "glsl";
+  const bool code = o.format == "cpp" || o.format == "glsl" || o.format == "hlsl";
   if (code) require_even_spacing("--mu", mu, o.format), require_even_spacing("--sweep", sweep.values, o.format);
   const analysis::ModelAt at = model_at(o, sweep);
   at(sweep.values.front());  // a bad model or parameter fails before any work
   const analysis::AlbedoLut lut = analysis::albedo_lut(at, sweep.values, mu, o.average, progress_of(o, "cells"));
-  if (o.format == "exr") return write_exr_lut(o, lut, sweep);
-  if (o.format == "png16") return write_png16_lut(o, lut, sweep);
+  const Provenance provenance = provenance_of(o, lut);
+  if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, lut, sweep, provenance);
+  if (o.format == "png16") return write_png16_lut(o, lut, sweep, provenance);
+  if (o.format == "npy") {
+    write_output(o.out, npy_of(lut, sweep));
+    if (!o.quiet) fmt::print(stderr, "lut: {}\n", provenance_line(provenance));
+    return;
+  }
   if (!code) {
     io::Table table = lut_table(lut, sweep);
-    table.meta = {{"model", o.model.id}};
-    return write_output(o.out, o.format == "json" ? io::to_json(table, o.round) : io::to_csv(table, o.round));
+    table.meta = {{"model", o.model.id}, {"command", provenance.command}, {"version", provenance.version},
+                  {"sha256", provenance.sha256}};
+    if (o.format == "json") return write_output(o.out, io::to_json(table, o.round));
+    return write_output(o.out, "# " + provenance_line(provenance) + "\n" + io::to_csv(table, o.round));
   }
-  const LutDescription description{command_line(o), describe_model(o), sweep.name,
+  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name,
                                    analysis::lut_interpolation_error(lut, at, progress_of(o, "interpolation error"))};
-  write_output(o.out, o.format == "cpp" ? lut_cpp(lut, description) : lut_glsl(lut, description));
+  if (o.format == "cpp") return write_output(o.out, lut_cpp(lut, description));
+  write_output(o.out, o.format == "glsl" ? lut_glsl(lut, description) : lut_hlsl(lut, description));
 }
 
 }  // namespace
@@ -188,17 +244,21 @@ void add_lut_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--average", o->average,
                 "Also E_avg(p) = 2∫₀¹ E(μ) μ dμ (by quadrature in μ, not from the grid); at most 256 values of p");
-  cmd->add_option("--format", o->format, "csv, json, exr (float), png16 (16-bit gray), cpp or glsl (arrays with their "
-                                         "bilinear lookup and its measured error)")
-      ->capture_default_str()->check(CLI::IsMember({"csv", "json", "exr", "png16", "cpp", "glsl"}));
+  cmd->add_option("--format", o->format, "csv, json, exr (float), exr-half, png16 (16-bit gray), npy (NumPy float64), "
+                                         "cpp, glsl or hlsl (arrays with their bilinear lookup and its measured error)")
+      ->capture_default_str()->check(CLI::IsMember({"csv", "json", "exr", "exr-half", "png16", "npy", "cpp", "glsl", "hlsl"}));
   cmd->add_option("--round", o->round, "csv/json: print numbers with this many decimals")->check(CLI::Range(0, 17));
-  cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout; needed for exr and png16");
+  cmd->add_option("--out,-o", o->out, "Write to FILE (atomically) instead of stdout; needed for exr, exr-half, png16 and npy");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on stderr");
   cmd->footer(
       "E(μ, p) = ρ(acos μ) by the deterministic cubature (≥ 8 digits), every cell in parallel; at most\n"
       "65536 cells. CSV: columns PARAM,mu,E (and E_avg, repeated on each row of its p), one row per cell,\n"
-      "p-major. Images: μ along x, p along y (first value at the top). cpp and glsl state the bilinear\n"
-      "lookup's error measured against the cubature at the cells' centres (which doubles the work).\n"
+      "p-major. Images: μ along x, p along y (first value at the top). npy: E of shape (p, μ). cpp, glsl\n"
+      "and hlsl state the bilinear lookup's error measured against the cubature at the cells' centres\n"
+      "(which doubles the work). Every file says where it came from: the command, specula's version and\n"
+      "the SHA-256 of its values (E p-major, then E_avg, as little-endian doubles): CSV on a first line\n"
+      "'# ...', JSON and image metadata as keys, code in its header comment; npy's header takes no other\n"
+      "keys, so npy prints it on stderr.\n"
       "Other parameters take -p NAME=VALUE. Examples:\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --average --out ggx_E.csv\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@16 --mu 0.05:1@16 --average --format glsl -o ggx_E.glsl\n"

@@ -101,4 +101,36 @@ std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& d) {
   return text;
 }
 
+std::string lut_hlsl(const analysis::AlbedoLut& lut, const LutDescription& d) {
+  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
+  std::string text = header_comment(lut, d);
+  const std::size_t cells = lut.e.size();
+  text += fmt::format(
+      "// E at (mu_j, p_i): specula_lut_E[i * {} + j]. HLSL (Shader Model 4 and later).\n"
+      "static const float specula_lut_E[{}] = {{\n    {}}};\n",
+      mu.count, cells, float_list(lut.e, 8));
+  if (!lut.e_avg.empty())
+    text += fmt::format("static const float specula_lut_E_avg[{}] = {{\n    {}}};\n", p.count, float_list(lut.e_avg, 8));
+  text += fmt::format(
+      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
+      "float3 specula_lut_locate(float x, float first, float step, int count) {{\n"
+      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
+      "  int i = min(int(t), max(count - 2, 0));\n  return float3(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
+      "// E(mu, p), bilinear.\nfloat specula_lut_energy(float mu, float p) {{\n"
+      "  float3 a = specula_lut_locate(p, {}, {}, {});\n  float3 b = specula_lut_locate(mu, {}, {}, {});\n"
+      "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
+      "  float e0 = lerp(specula_lut_E[i * {} + j], specula_lut_E[i * {} + j1], b.z);\n"
+      "  float e1 = lerp(specula_lut_E[i1 * {} + j], specula_lut_E[i1 * {} + j1], b.z);\n"
+      "  return lerp(e0, e1, a.z);\n}}\n",
+      glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
+      glsl::float_literal(mu.step), mu.count, mu.count, mu.count, mu.count, mu.count);
+  if (!lut.e_avg.empty())
+    text += fmt::format(
+        "\n// E_avg(p), linear.\nfloat specula_lut_energy_average(float p) {{\n"
+        "  float3 a = specula_lut_locate(p, {}, {}, {});\n"
+        "  return lerp(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
+        glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
+  return text;
+}
+
 }  // namespace specula::cli

@@ -1,6 +1,9 @@
 // specula lut and the M+ms models through the CLI: formats, layout, bad input (exit 2, one line),
 // atomic output, Ctrl-C; each with a negative control.
 #include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +16,8 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
+using ::testing::StartsWith;
 
 std::string bytes_of(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -21,11 +26,12 @@ std::string bytes_of(const fs::path& path) {
 
 TEST_F(Cli, LutCsvHasOneRowPerCellWithTheAverageOnEachRowOfItsParameter) {
   const Result r = ok({"lut", "--model", "lambert", "--sweep", "rho=0.25,0.5", "--mu", "0.5,1", "--average", "--round", "6"});
-  EXPECT_THAT(lines_of(r.out), ElementsAre("rho,mu,E,E_avg", "0.25,0.5,0.250000,0.250000", "0.25,1,0.250000,0.250000",
+  EXPECT_THAT(lines_of(r.out), ElementsAre(StartsWith("# specula lut --model lambert --sweep rho=0.25,0.5 --mu 0.5,1"),
+                                           "rho,mu,E,E_avg", "0.25,0.5,0.250000,0.250000", "0.25,1,0.250000,0.250000",
                                            "0.5,0.5,0.500000,0.500000", "0.5,1,0.500000,0.500000"));
   // Without --sweep and --average: one row at the model's values, no E_avg column.
   EXPECT_THAT(lines_of(ok({"lut", "--model", "lambert", "-p", "rho=0.5", "--mu", "1", "--round", "3"}).out),
-              ElementsAre("mu,E", "1,0.500"));
+              ElementsAre(StartsWith("# specula lut"), "mu,E", "1,0.500"));
 }
 
 TEST_F(Cli, LutJsonNamesTheModelAndColumns) {
@@ -72,6 +78,71 @@ TEST_F(Cli, LutImagesAreMuAlongXAndTheParameterAlongY) {
   EXPECT_EQ(bytes_of(exr).substr(0, 4), std::string("\x76\x2f\x31\x01", 4));
 }
 
+// Every format says where it came from: the command, the version and the SHA-256 of the values,
+// the same hash for the same values in every format, another for other values (the control).
+TEST_F(Cli, LutFilesSayWhereTheyCameFrom) {
+  const std::vector<std::string> table{"lut", "--model", "ggx", "--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@4", "-q"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = table;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  const std::string csv = ok(with({})).out;
+  const std::size_t at = csv.find("sha256 of the values ");
+  ASSERT_NE(at, std::string::npos) << csv;
+  const std::string sha = csv.substr(at + 21, 64);
+  EXPECT_EQ(sha.find_first_not_of("0123456789abcdef"), std::string::npos) << sha;
+  EXPECT_THAT(csv, StartsWith("# specula lut --model ggx --sweep alpha=0.2:0.6@3 --mu 0.25:1@4 --format csv; specula "));
+  EXPECT_EQ(nlohmann::json::parse(ok(with({"--format", "json"})).out)["sha256"], sha);
+  for (const char* format : {"cpp", "glsl", "hlsl"}) EXPECT_THAT(ok(with({"--format", format})).out, HasSubstr(sha)) << format;
+  for (const char* format : {"exr", "exr-half", "png16"}) {
+    const fs::path image = work() / (std::string("e.") + format);
+    ok(with({"--format", format, "-o", image.string()}));
+    EXPECT_THAT(bytes_of(image), HasSubstr(sha)) << format;
+  }
+  EXPECT_THAT(ok(with({"--format", "npy", "-o", (work() / "e.npy").string()})).err, IsEmpty());  // -q: quiet
+  const std::string other = ok({"lut", "--model", "ggx", "--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@5", "-q"}).out;
+  EXPECT_THAT(other, Not(HasSubstr(sha)));  // the control
+}
+
+// NumPy's .npy 1.0: the magic, a header dict padded so the data starts on 64 bytes, then E as
+// little-endian doubles of shape (p, mu), the CSV's values exactly.
+TEST_F(Cli, LutNpyIsNumpysFormatWithTheCsvsValues) {
+  const fs::path npy = work() / "e.npy";
+  const Result r = run({"lut", "--model", "ggx", "--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@4", "--format", "npy", "-o", npy.string()});
+  EXPECT_EQ(r.code, 0) << r;
+  EXPECT_THAT(r.err, HasSubstr("sha256 of the values"));  // npy's header has no room for it
+  const std::string bytes = bytes_of(npy);
+  ASSERT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  const std::size_t header = std::size_t(std::uint8_t(bytes[8])) | std::size_t(std::uint8_t(bytes[9])) << 8;
+  EXPECT_EQ((10 + header) % 64, 0u);
+  EXPECT_THAT(bytes.substr(10, header), StartsWith("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 4), }"));
+  ASSERT_EQ(bytes.size(), 10 + header + 12 * 8);
+  const auto lines = lines_of(ok({"lut", "--model", "ggx", "--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@4", "-q"}).out);
+  ASSERT_EQ(lines.size(), 2u + 12);
+  for (std::size_t k = 0; k < 12; ++k) {
+    double e;
+    std::memcpy(&e, bytes.data() + 10 + header + 8 * k, 8);
+    EXPECT_EQ(e, std::stod(lines[2 + k].substr(lines[2 + k].rfind(',') + 1))) << k;
+  }
+}
+
+// HLSL: the arrays and the lookup compile in glslang's HLSL front end inside a pixel shader; the
+// same shader with the lookup misspelt does not (the control).
+TEST_F(Cli, LutHlslCompiles) {
+  std::string hlsl = ok({"lut", "--model", "ggx", "--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@4", "--average", "--format", "hlsl", "-q"}).out;
+  const auto compiles = [&](const std::string& call) {
+    const fs::path path = work() / "lut.hlsl";
+    std::ofstream(path) << hlsl << "float4 main(float4 pos : SV_Position) : SV_Target { return float4(" << call
+                        << ", specula_lut_energy_average(0.3), 0.0, 1.0); }\n";
+    const std::string command = "glslangValidator -D -V -e main -S frag " + path.string() + " -o " +
+                                (work() / "lut.spv").string() + " > /dev/null 2>&1";
+    return std::system(command.c_str()) == 0;
+  };
+  EXPECT_TRUE(compiles("specula_lut_energy(0.5, 0.3)"));
+  EXPECT_FALSE(compiles("specula_lut_energie(0.5, 0.3)"));
+}
+
 TEST_F(Cli, LutBadInputIsExitTwoWithOneLine) {
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--mu", "0"}).err, HasSubstr("--mu: 0 is outside [1e-09, 1]"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--mu", "0.5,0.25"}).err, HasSubstr("values must increase"));
@@ -85,6 +156,7 @@ TEST_F(Cli, LutBadInputIsExitTwoWithOneLine) {
               HasSubstr("--average: 257 values of alpha is more than 256"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--mu", "0.1,0.2,0.5", "--format", "glsl"}).err, HasSubstr("evenly spaced"));
   EXPECT_THAT(bad({"lut", "--model", "ggx", "--format", "png16"}).err, HasSubstr("needs --out"));
+  EXPECT_THAT(bad({"lut", "--model", "ggx", "--format", "npy"}).err, HasSubstr("needs --out"));
   bad({"lut", "--model", "ggx", "--format", "tiff"});
   bad({"lut", "--model", "no-such+ms"});
   // Negative controls: the same command with a valid μ succeeds, and 256 averages are allowed.

@@ -1,0 +1,16 @@
+#pragma once
+// SHA-256 (FIPS 180-4), for the provenance of the files specula writes: a table's values hashed so
+// that a copy can be told from the original (docs/energy-compensation.md, `specula lut`).
+#include <cstddef>
+#include <span>
+#include <string>
+
+namespace specula::io {
+
+/// The SHA-256 digest of `bytes` as 64 lowercase hex digits.
+std::string sha256_hex(std::span<const std::byte> bytes);
+
+/// The digest of doubles as little-endian IEEE 754 binary64, in order: the same on any machine.
+std::string sha256_of_doubles(std::span<const double> values);
+
+}  // namespace specula::io
