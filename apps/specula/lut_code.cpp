@@ -69,68 +69,59 @@ std::string lut_cpp(const analysis::AlbedoLut& lut, const LutDescription& d) {
   return text + "\n}  // namespace specula_lut\n";
 }
 
-std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& d) {
+namespace {
+
+/// What GLSL and HLSL spell differently in the table and its lookup.
+struct ShaderWords {
+  const char* language;   ///< for the header line
+  const char* vec3;       ///< vec3 | float3
+  const char* mix;        ///< mix | lerp
+  std::string (*array)(const std::string& name, std::size_t size, const std::string& values);
+};
+
+std::string glsl_array(const std::string& name, std::size_t size, const std::string& values) {
+  return fmt::format("const float {}[{}] = float[{}](\n    {});\n", name, size, size, values);
+}
+
+std::string hlsl_array(const std::string& name, std::size_t size, const std::string& values) {
+  return fmt::format("static const float {}[{}] = {{\n    {}}};\n", name, size, values);
+}
+
+constexpr ShaderWords kGlsl{"GLSL 3.30, ES 3.00, WebGL 2", "vec3", "mix", glsl_array};
+constexpr ShaderWords kHlsl{"HLSL (Shader Model 4 and later)", "float3", "lerp", hlsl_array};
+
+std::string lut_shader(const analysis::AlbedoLut& lut, const LutDescription& d, const ShaderWords& w) {
   const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
   std::string text = header_comment(lut, d);
-  const std::size_t cells = lut.e.size();
-  text += fmt::format(
-      "// E at (mu_j, p_i): specula_lut_E[i * {} + j]. GLSL 3.30, ES 3.00, WebGL 2.\n"
-      "const float specula_lut_E[{}] = float[{}](\n    {});\n",
-      mu.count, cells, cells, float_list(lut.e, 8));
-  if (!lut.e_avg.empty())
-    text += fmt::format("const float specula_lut_E_avg[{}] = float[{}](\n    {});\n", p.count, p.count, float_list(lut.e_avg, 8));
+  text += fmt::format("// E at (mu_j, p_i): specula_lut_E[i * {} + j]. {}.\n", mu.count, w.language);
+  text += w.array("specula_lut_E", lut.e.size(), float_list(lut.e, 8));
+  if (!lut.e_avg.empty()) text += w.array("specula_lut_E_avg", p.count, float_list(lut.e_avg, 8));
   text += fmt::format(
       "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
-      "vec3 specula_lut_locate(float x, float first, float step, int count) {{\n"
+      "{0} specula_lut_locate(float x, float first, float step, int count) {{\n"
       "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
-      "  int i = min(int(t), max(count - 2, 0));\n  return vec3(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
+      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
       "// E(mu, p), bilinear.\nfloat specula_lut_energy(float mu, float p) {{\n"
-      "  vec3 a = specula_lut_locate(p, {}, {}, {});\n  vec3 b = specula_lut_locate(mu, {}, {}, {});\n"
+      "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n  {0} b = specula_lut_locate(mu, {5}, {6}, {7});\n"
       "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
-      "  float e0 = mix(specula_lut_E[i * {} + j], specula_lut_E[i * {} + j1], b.z);\n"
-      "  float e1 = mix(specula_lut_E[i1 * {} + j], specula_lut_E[i1 * {} + j1], b.z);\n"
-      "  return mix(e0, e1, a.z);\n}}\n",
-      glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
-      glsl::float_literal(mu.step), mu.count, mu.count, mu.count, mu.count, mu.count);
+      "  float e0 = {1}(specula_lut_E[i * {7} + j], specula_lut_E[i * {7} + j1], b.z);\n"
+      "  float e1 = {1}(specula_lut_E[i1 * {7} + j], specula_lut_E[i1 * {7} + j1], b.z);\n"
+      "  return {1}(e0, e1, a.z);\n}}\n",
+      w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
+      glsl::float_literal(mu.step), mu.count);
   if (!lut.e_avg.empty())
     text += fmt::format(
         "\n// E_avg(p), linear.\nfloat specula_lut_energy_average(float p) {{\n"
-        "  vec3 a = specula_lut_locate(p, {}, {}, {});\n"
-        "  return mix(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
-        glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
+        "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n"
+        "  return {1}(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
+        w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
   return text;
 }
 
-std::string lut_hlsl(const analysis::AlbedoLut& lut, const LutDescription& d) {
-  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
-  std::string text = header_comment(lut, d);
-  const std::size_t cells = lut.e.size();
-  text += fmt::format(
-      "// E at (mu_j, p_i): specula_lut_E[i * {} + j]. HLSL (Shader Model 4 and later).\n"
-      "static const float specula_lut_E[{}] = {{\n    {}}};\n",
-      mu.count, cells, float_list(lut.e, 8));
-  if (!lut.e_avg.empty())
-    text += fmt::format("static const float specula_lut_E_avg[{}] = {{\n    {}}};\n", p.count, float_list(lut.e_avg, 8));
-  text += fmt::format(
-      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
-      "float3 specula_lut_locate(float x, float first, float step, int count) {{\n"
-      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
-      "  int i = min(int(t), max(count - 2, 0));\n  return float3(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
-      "// E(mu, p), bilinear.\nfloat specula_lut_energy(float mu, float p) {{\n"
-      "  float3 a = specula_lut_locate(p, {}, {}, {});\n  float3 b = specula_lut_locate(mu, {}, {}, {});\n"
-      "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
-      "  float e0 = lerp(specula_lut_E[i * {} + j], specula_lut_E[i * {} + j1], b.z);\n"
-      "  float e1 = lerp(specula_lut_E[i1 * {} + j], specula_lut_E[i1 * {} + j1], b.z);\n"
-      "  return lerp(e0, e1, a.z);\n}}\n",
-      glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
-      glsl::float_literal(mu.step), mu.count, mu.count, mu.count, mu.count, mu.count);
-  if (!lut.e_avg.empty())
-    text += fmt::format(
-        "\n// E_avg(p), linear.\nfloat specula_lut_energy_average(float p) {{\n"
-        "  float3 a = specula_lut_locate(p, {}, {}, {});\n"
-        "  return lerp(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
-        glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
-  return text;
-}
+}  // namespace
+
+std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& d) { return lut_shader(lut, d, kGlsl); }
+
+std::string lut_hlsl(const analysis::AlbedoLut& lut, const LutDescription& d) { return lut_shader(lut, d, kHlsl); }
 
 }  // namespace specula::cli
