@@ -1,9 +1,7 @@
 // specula lut: energy-compensation tables, the directional albedo E(μ, p) of a model on a grid of
 // μ = cos θ_i and one parameter p, with E_avg(p), as CSV/JSON, an image or ready-to-paste code.
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <fmt/format.h>
 
 #include "build_info.h"
@@ -177,12 +175,7 @@ std::string npy_of(const analysis::AlbedoLut& lut, const Sweep& sweep) {
   out += '\x00';
   out += static_cast<char>(header.size() & 0xff);
   out += static_cast<char>(header.size() >> 8);
-  out += header;
-  for (const double e : lut.e) {
-    const auto bits = std::bit_cast<std::uint64_t>(e);
-    for (int b = 0; b < 8; ++b) out += static_cast<char>((bits >> (8 * b)) & 0xff);
-  }
-  return out;
+  return out + header + io::little_endian_bytes(lut.e);
 }
 
 Provenance provenance_of(const LutOptions& o, const analysis::AlbedoLut& lut) {

@@ -62,13 +62,19 @@ std::string sha256_hex(std::span<const std::byte> bytes) {
   return hex;
 }
 
-std::string sha256_of_doubles(std::span<const double> values) {
-  std::vector<std::byte> bytes(values.size() * 8);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const auto bits = std::bit_cast<std::uint64_t>(values[i]);
-    for (int b = 0; b < 8; ++b) bytes[8 * i + std::size_t(b)] = std::byte(bits >> (8 * b));
+std::string little_endian_bytes(std::span<const double> values) {
+  std::string bytes;
+  bytes.reserve(values.size() * 8);
+  for (const double v : values) {
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    for (int b = 0; b < 8; ++b) bytes += static_cast<char>((bits >> (8 * b)) & 0xff);
   }
-  return sha256_hex(bytes);
+  return bytes;
+}
+
+std::string sha256_of_doubles(std::span<const double> values) {
+  const std::string bytes = little_endian_bytes(values);
+  return sha256_hex(std::as_bytes(std::span(bytes.data(), bytes.size())));
 }
 
 }  // namespace specula::io

@@ -10,7 +10,10 @@ namespace specula::io {
 /// The SHA-256 digest of `bytes` as 64 lowercase hex digits.
 std::string sha256_hex(std::span<const std::byte> bytes);
 
-/// The digest of doubles as little-endian IEEE 754 binary64, in order: the same on any machine.
+/// Doubles as little-endian IEEE 754 binary64 bytes, in order: the same on any machine.
+std::string little_endian_bytes(std::span<const double> values);
+
+/// The digest of little_endian_bytes(values).
 std::string sha256_of_doubles(std::span<const double> values);
 
 }  // namespace specula::io
