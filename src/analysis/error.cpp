@@ -20,20 +20,18 @@ constexpr int kFarSamples = 2048;
 
 using numeric::Maximum;
 
-/// Maximizes g over [a, b] sampled at `grid` (sorted, within [a, b]): the best sample, then
-/// golden-section search in the bracket of its neighbours.
+/// Maximizes g over [grid[first], grid[last]] whose values at the grid are `sampled`: the best
+/// sample, then golden-section search in the bracket of its neighbours.
 template <class G>
-Maximum maximize(const G& g, const std::vector<double>& grid) {
-  check_interrupt();  // once per sweep of a grid (a few thousand cheap lobe evaluations)
+Maximum maximize(const G& g, const std::vector<double>& grid, const std::vector<double>& sampled, std::size_t first,
+                 std::size_t last) {
   Maximum best;
-  std::size_t best_index = 0;
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    const double value = g(grid[i]);
-    if (value > best.value) best = {grid[i], value}, best_index = i;
-  }
-  if (grid.size() < 3) return best;
-  const double lo = grid[best_index == 0 ? 0 : best_index - 1];
-  const double hi = grid[std::min(best_index + 1, grid.size() - 1)];
+  std::size_t best_index = first;
+  for (std::size_t i = first; i <= last; ++i)
+    if (sampled[i] > best.value) best = {grid[i], sampled[i]}, best_index = i;
+  if (last - first < 2) return best;
+  const double lo = grid[best_index == first ? first : best_index - 1];
+  const double hi = grid[std::min(best_index + 1, last)];
   const Maximum refined = numeric::golden_section_max(g, lo, hi, 1e-15 * (1 + hi));
   return refined.value > best.value ? refined : best;
 }
@@ -76,24 +74,33 @@ ApproximationError error_of(const A& model, const B& reference, double zone) {
   const double model_end = model.support_log_cos();
   const double edge = zone_end(reference, zone, end);
 
+  const auto relative = [](double value, double ref) { return ref > 0 ? std::abs(value - ref) / ref : 0.0; };
   auto abs_diff = [&](double u) { return std::abs(model.at_log_cos(u) - reference.at_log_cos(u)); };
-  auto rel_diff = [&](double u) {
-    const double r = reference.at_log_cos(u);
-    return r > 0 ? std::abs(model.at_log_cos(u) - r) / r : 0.0;
+  auto rel_diff = [&](double u) { return relative(model.at_log_cos(u), reference.at_log_cos(u)); };
+  std::vector<double> extra{model_end, end, edge};
+  for (const double x : lobes::kinks_log_cos(model)) extra.push_back(x);
+  for (const double x : lobes::kinks_log_cos(reference)) extra.push_back(x);
+
+  // One grid for the three maxima: each lobe is evaluated once per sample (the evaluations, two
+  // exp at least, are nearly all of the cost), then each maximum reads its part of the grid.
+  const std::vector<double> grid = sample_grid(0, kLogCosEnd, width, extra);
+  std::vector<double> abs(grid.size()), rel(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const double value = model.at_log_cos(grid[i]), ref = reference.at_log_cos(grid[i]);
+    abs[i] = std::abs(value - ref);
+    rel[i] = relative(value, ref);
+  }
+  check_interrupt();
+  const auto index_of = [&](double u) {
+    return static_cast<std::size_t>(std::lower_bound(grid.begin(), grid.end(), u) - grid.begin());
   };
-  std::vector<double> kinks{model_end};
-  for (const double x : lobes::kinks_log_cos(model)) kinks.push_back(x);
-  for (const double x : lobes::kinks_log_cos(reference)) kinks.push_back(x);
-  auto with = [&](std::vector<double> more) {
-    more.insert(more.end(), kinks.begin(), kinks.end());
-    return more;
-  };
+  const std::size_t edge_index = index_of(edge), end_index = index_of(end);
   ApproximationError e;
-  const Maximum abs_max = maximize(abs_diff, sample_grid(0, kLogCosEnd, width, with({end})));
+  const Maximum abs_max = maximize(abs_diff, grid, abs, 0, grid.size() - 1);
   e.max_abs = abs_max.value;
   e.argmax_abs_deg = angle_deg(abs_max.at);
-  e.max_rel_epicenter = maximize(rel_diff, sample_grid(0, edge, width, kinks)).value;
-  if (edge < end) e.max_rel_attenuation = maximize(rel_diff, sample_grid(edge, end, width, kinks)).value;
+  e.max_rel_epicenter = maximize(rel_diff, grid, rel, 0, edge_index).value;
+  if (edge < end) e.max_rel_attenuation = maximize(rel_diff, grid, rel, edge_index, end_index).value;
   return e;
 }
 
