@@ -74,6 +74,9 @@ std::string text_report(const std::vector<queries::CheckCase>& cases, double las
     else if (compensated && compensated->table->from_walk)
       out += fmt::format("\n  energy compensation         the random walk's multiple scattering (F0 < 1), within {:.2g} of the walk",
                          r.compensation_error);
+    else if (compensated && scales(compensated->scheme))
+      out += fmt::format("\n  energy compensation         Turquin's scale 1 + F_s (1 − E)/E at N·V, {}; not reciprocal: the albedo is the viewer's",
+                         compensated->fresnel ? "F_s = F(N·V)" : fmt::format("F_s = {:.4g}", compensated->fresnel_scale));
     else if (compensated && compensated->fresnel_scale != 1)
       out += fmt::format("\n  energy compensation         Kulla-Conty's, F_ms = {:.4g} (F0 < 1: the albedo stays below 1)",
                          compensated->fresnel_scale);

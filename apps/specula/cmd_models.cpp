@@ -38,9 +38,14 @@ void add_models_command(CLI::App& app) {
   cmd->footer(
       "Lobe models are F(c) with a form (rv: c = R·V, nh: c = N·H) and a coefficient k;\n"
       "full BRDFs take directions. Any id M with +ms appended (ggx+ms, log-normalized+ms, a model of\n"
-      "yours + ms) is M with Kulla-Conty energy compensation, a full BRDF whose albedo is 1\n"
-      "where F = 1; with f0 < 1 the returned energy is scaled by Kulla-Conty's Fresnel\n"
-      "(docs/energy-compensation.md). Example:\n  specula models\n  specula models --json | jq '.[].id'");
+      "yours + ms) is M with energy compensation, a full BRDF whose albedo is 1 where F = 1; with\n"
+      "f0 < 1 GGX gives back the random walk's multiple scattering, the others Kulla-Conty's.\n"
+      "Each published compensation is a suffix too: M+kulla-conty (the added lobe times F_ms),\n"
+      "M+turquin-f0, M+turquin-f, M+turquin-favg (f_M times 1 + F (1 - E)/E at N.V, F = F0, F(N.V)\n"
+      "or F_avg) and M+cycles (F = Cycles' F_ms); the scaled ones are not reciprocal and their\n"
+      "albedo is the viewer's (docs/energy-compensation.md).\n"
+      "Example:\n  specula models\n  specula models --json | jq '.[].id'\n"
+      "  specula albedo --model ggx+turquin-f0 -p alpha=1 -p f0=0.04 --theta 0,60");
   auto json = std::make_shared<bool>(false);
   auto out = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print JSON instead of a table");

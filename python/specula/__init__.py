@@ -188,7 +188,7 @@ def fit(X, y, *, variables=None, ops="+,*,/", constants="fitted", max_size=25, s
     it too. Every option is the CLI's, with the CLI's ranges.
 
     >>> x = np.linspace(1, 4, 30)
-    >>> r = specula.fit(x, 3 * x * x + 2, time=60, generations=20)
+    >>> r = specula.fit(x, 3 * x * x + 2, time=60, generations=2)
     >>> r.best.size, r.best.train_error < 1e-12, float(r.best(np.array([2.0]))[0])
     (7, True, 14.0)
     """

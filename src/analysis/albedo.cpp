@@ -201,10 +201,13 @@ double beckmann_slope(const FullBrdf& brdf) {
 double beckmann_support(double m) { return std::atan(m * std::sqrt(50.0)); }
 
 /// ρ of M + F_ms f_ms is ρ_M plus F_ms f_ms's own albedo, which is separable and known exactly from
-/// the table (EnergyTable::ms_scale): F_ms (1 − E(μ_i))₊ · ms_scale.
+/// the table (EnergyTable::ms_scale): F_ms (1 − E(μ_i))₊ · ms_scale. A scaled compensation's (the
+/// viewer's albedo) is ρ_M times its scale at μ, M being reciprocal.
 Albedo compensated_albedo(const Compensated& model, double theta_i) {
   const Albedo base = albedo(*model.base, theta_i);
-  return {base.value + model.multiple_albedo(std::cos(theta_i)), base.error_estimate, base.evaluations};
+  const double mu = std::cos(theta_i);
+  const double scale = scales(model.scheme) ? model.scale(mu) : 1;
+  return {model.albedo(base.value, mu), base.error_estimate * scale, base.evaluations};
 }
 
 }  // namespace

@@ -188,7 +188,7 @@ Albedo albedo_at_mu(const Model& model, double mu) {
 Albedo average_albedo(const Model& model) {
   // M+ms: its albedo is E_M(μ) + F_ms (1 − at(μ))₊ ms_scale, whose second part the table integrates
   // exactly; integrating the sum adaptively chased the interpolant's 64 kinks (2000 albedos).
-  if (const Compensated* compensated = model.compensated()) {
+  if (const Compensated* compensated = model.compensated(); compensated && !scales(compensated->scheme)) {
     const Albedo base = average_albedo(*compensated->base);
     const EnergyTable& table = *compensated->table;
     return {base.value + compensated->fresnel_scale * table.ms_scale * table.lost_average(), base.error_estimate,

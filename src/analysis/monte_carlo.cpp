@@ -40,7 +40,9 @@ class SampleBlock {
  public:
   static constexpr std::size_t kSize = 1024;
 
-  SampleBlock(const Model& model, const Vec3& l) : model_(model) {
+  /// `viewer`: the fixed direction is V and the samples are L (the albedo of a model that is not
+  /// reciprocal, a scaled compensation's, is the viewer's: models/compensated.h).
+  SampleBlock(const Model& model, const Vec3& l, bool viewer) : model_(model), viewer_(viewer) {
     const double fixed[6] = {0, 0, 1, l.x, l.y, l.z};
     for (std::size_t k = 0; k < 6; ++k) fixed_[k].assign(kSize, fixed[k]);
     for (auto& c : v_) c.reserve(kSize);
@@ -62,10 +64,12 @@ class SampleBlock {
     const std::size_t count = pdf_.size();
     const auto first = [count](const std::vector<double>& column) { return std::span<const double>(column.data(), count); };
     f_.resize(count);
+    const std::span<const double> sampled[3] = {v_[0], v_[1], v_[2]};
+    const std::span<const double> fixed[3] = {first(fixed_[3]), first(fixed_[4]), first(fixed_[5])};
+    const std::span<const double>* l = viewer_ ? sampled : fixed;
+    const std::span<const double>* v = viewer_ ? fixed : sampled;
     simd::eval_batch(model_, simd::Tier::exact,
-                     {first(fixed_[0]), first(fixed_[1]), first(fixed_[2]), first(fixed_[3]), first(fixed_[4]),
-                      first(fixed_[5]), v_[0], v_[1], v_[2]},
-                     f_);
+                     {first(fixed_[0]), first(fixed_[1]), first(fixed_[2]), l[0], l[1], l[2], v[0], v[1], v[2]}, f_);
     for (std::size_t i = 0; i < count; ++i) {
       const double value = pdf_[i] > 0 ? f_[i] * v_[2][i] / pdf_[i] : 0;  // f (N·V) / pdf
       sum += value;
@@ -79,6 +83,7 @@ class SampleBlock {
 
  private:
   const Model& model_;
+  bool viewer_;
   std::array<std::vector<double>, 6> fixed_;  ///< N and L by component
   std::array<std::vector<double>, 3> v_;
   std::vector<double> pdf_, f_;
@@ -106,7 +111,8 @@ MonteCarloEstimate albedo_monte_carlo(const Model& model, double theta_i, std::s
   check_interrupt();
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  SampleBlock block(model, l);
+  const Compensated* compensated = model.compensated();
+  SampleBlock block(model, l, compensated && scales(compensated->scheme));
   for (std::size_t i = 0; i < samples; ++i) {
     const double choice = uniform(rng), xi1 = uniform(rng), xi2 = uniform(rng);
     Vec3 v;

@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 #include <map>
 #include <mutex>
+#include <span>
 
 #include "specula/analysis/energy.h"
 #include "specula/analysis/fresnel.h"
@@ -62,7 +63,7 @@ Catalogue& catalogue() {
   return c;
 }
 
-/// The compensated models looked up so far ("M+ms", models/compensated.h), by id.
+/// The compensated models looked up so far ("M+ms", "M+cycles", …: models/compensated.h), by id.
 struct CompensatedInfos {
   std::mutex mutex;
   std::map<std::string, std::unique_ptr<const ModelInfo>, std::less<>> infos;
@@ -95,33 +96,85 @@ ParamValues white_params(const ModelInfo& base, ParamValues params, const std::o
   return params;
 }
 
-/// The table and F_ms of M+ms (models/compensated.h). GGX with F0 < 1: the random walk's own
-/// multiply scattered albedo (analysis::ggx_walk_table), F_ms = 1. Any other model with a Fresnel:
-/// the cached energy table of M with F = 1 and Kulla & Conty's F_ms from M's F_avg. Any other
-/// model: its own table (analysis/energy.h: the table is M's albedo, which is why the catalogue
-/// sits above analysis).
-Compensated compensation_of(const ModelInfo& base, const ParamValues& params, std::shared_ptr<const Model> model) {
-  const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
-  const std::optional<fresnel::Channel> f = fresnel_of(*model);
-  if (const auto* ggx = f ? std::get_if<Ggx>(&model->brdf()) : nullptr; ggx && ggx->f0 < 1)  // f: a full BRDF
-    return {std::move(model), std::make_shared<const EnergyTable>(analysis::ggx_walk_table(ggx->alpha, ggx->f0)), 1.0};
-  auto table = analysis::cached_energy_table(make_model(listed, white_params(base, params, f)));
-  const double scale = f ? kulla_conty_fresnel(analysis::fresnel_average(*f).value, table->e_avg) : 1.0;
-  return {std::move(model), std::move(table), scale};
+/// The F_s of a scaled scheme with a constant one (models/compensated.h), from M's Fresnel `f` and
+/// its white table's E_avg.
+double scale_fresnel(CompensationScheme scheme, const fresnel::Channel& f, double e_avg) {
+  const double f_avg = analysis::fresnel_average(f).value;
+  switch (scheme) {
+    case CompensationScheme::turquin_f0: return f(1.0);
+    case CompensationScheme::turquin_favg: return f_avg;
+    case CompensationScheme::cycles: return f_avg * e_avg / (1 - f_avg * (1 - e_avg));
+    default: return 1;
+  }
 }
 
-/// M+ms: M's parameters; made as M at the same values with compensation_of's table and F_ms.
-ModelInfo compensated_info(const ModelInfo& base) {
-  ModelInfo info{base.id + std::string(kCompensatedSuffix), base.name + " + multiple scattering",
-                 fmt::format("{} with Kulla-Conty energy compensation (albedo 1 where F = 1)", base.id),
-                 base.source + "; Kulla & Conty 2017", ModelKind::brdf, base.form, Normalization::none, "1",
-                 base.params, {}, nullptr, base.origin};
-  info.make = [&base](std::span<const double> values) -> ModelImpl {
+/// The table and Fresnel factor of M compensated by `scheme` (models/compensated.h). M+ms for GGX
+/// with F0 < 1: the random walk's own multiply scattered albedo (analysis::ggx_walk_table), F_ms = 1.
+/// Every other case: the cached energy table of M with F = 1 (analysis/energy.h: the table is M's
+/// albedo, which is why the catalogue sits above analysis), and the scheme's factor from M's
+/// Fresnel (F ≡ 1 where M has none).
+Compensated compensation_of(const ModelInfo& base, const ParamValues& params, std::shared_ptr<const Model> model,
+                            CompensationScheme scheme) {
+  const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
+  const std::optional<fresnel::Channel> f = fresnel_of(*model);
+  if (const auto* ggx = f ? std::get_if<Ggx>(&model->brdf()) : nullptr;
+      ggx && ggx->f0 < 1 && scheme == CompensationScheme::shipped)  // f: a full BRDF
+    return {scheme, std::move(model), std::make_shared<const EnergyTable>(analysis::ggx_walk_table(ggx->alpha, ggx->f0)),
+            1.0, std::nullopt};
+  auto table = analysis::cached_energy_table(make_model(listed, white_params(base, params, f)));
+  Compensated c{scheme, std::move(model), std::move(table), 1.0, std::nullopt};
+  if (!f) return c;
+  if (scheme == CompensationScheme::turquin_f)
+    c.fresnel = *f;
+  else if (scales(scheme))
+    c.fresnel_scale = scale_fresnel(scheme, *f, c.table->e_avg);
+  else
+    c.fresnel_scale = kulla_conty_fresnel(analysis::fresnel_average(*f).value, c.table->e_avg);
+  return c;
+}
+
+/// What each scheme's model is called and says of itself.
+struct SchemeText {
+  const char* name;     ///< appended to M's name
+  const char* summary;  ///< after "M with "
+  const char* source;
+};
+
+constexpr SchemeText scheme_text(CompensationScheme scheme) noexcept {
+  switch (scheme) {
+    case CompensationScheme::shipped:
+      return {" + multiple scattering", "energy compensation: the random walk's multiple scattering (GGX, F0 < 1), else Kulla-Conty's",
+              "Kulla & Conty 2017; Heitz et al. 2016"};
+    case CompensationScheme::kulla_conty:
+      return {" + Kulla-Conty", "Kulla-Conty's added lobe, F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg))", "Kulla & Conty 2017"};
+    case CompensationScheme::turquin_f0:
+      return {" scaled by Turquin (F0)", "Turquin's scale 1 + F0 (1 - E)/E at N.V (Filament, three.js, Unreal); not reciprocal",
+              "Turquin 2019"};
+    case CompensationScheme::turquin_f:
+      return {" scaled by Turquin (F)", "Turquin's scale with F(N.V): 1 + F (1 - E)/E (libbsdl); not reciprocal", "Turquin 2019"};
+    case CompensationScheme::turquin_favg:
+      return {" scaled by Turquin (F_avg)", "Turquin's scale with F_avg: 1 + F_avg (1 - E)/E (MaterialX); not reciprocal",
+              "Turquin 2019"};
+    case CompensationScheme::cycles:
+      return {" scaled as Cycles", "Cycles' albedo scaling 1 + F_ms (1 - E)/E, F_ms = F_avg E_avg / (1 - F_avg (1 - E_avg)); not reciprocal",
+              "Blender Cycles (microfacet_ggx_preserve_energy)"};
+  }
+  return {"", "", ""};
+}
+
+/// M compensated by `scheme`: M's parameters; made as M at the same values with compensation_of's
+/// table and factor.
+ModelInfo compensated_info(const ModelInfo& base, CompensationScheme scheme) {
+  const SchemeText text = scheme_text(scheme);
+  ModelInfo info{base.id + std::string(suffix_of(scheme)), base.name + text.name,
+                 fmt::format("{} with {}", base.id, text.summary), base.source + "; " + text.source, ModelKind::brdf,
+                 base.form, Normalization::none, "1", base.params, {}, nullptr, base.origin};
+  info.make = [&base, scheme](std::span<const double> values) -> ModelImpl {
     ParamValues params;
     for (std::size_t i = 0; i < values.size(); ++i) params[base.params[i].name] = values[i];
     // Registry entries live as long as the process (user ones until cleared, with this entry).
     const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
-    return compensation_of(base, params, std::make_shared<const Model>(make_model(listed, params)));
+    return compensation_of(base, params, std::make_shared<const Model>(make_model(listed, params)), scheme);
   };
   return info;
 }
@@ -139,7 +192,7 @@ const ModelInfo* find_compensated(std::string_view id) noexcept {
   const std::lock_guard lock(c.mutex);
   auto found = c.infos.find(id);
   if (found == c.infos.end())
-    found = c.infos.emplace(std::string(id), std::make_unique<const ModelInfo>(compensated_info(*base))).first;
+    found = c.infos.emplace(std::string(id), std::make_unique<const ModelInfo>(compensated_info(*base, compensation_scheme_of(id)))).first;
   return found->second.get();
 }
 
@@ -186,7 +239,8 @@ namespace {
 std::string model_ids() {
   std::vector<std::string_view> ids;
   for (const auto& m : models()) ids.push_back(m.id);
-  return fmt::format("{}; any of them compensated: ID{}", fmt::join(ids, ", "), kCompensatedSuffix);
+  return fmt::format("{}; any of them compensated: ID{} (or ID{})", fmt::join(ids, ", "), kCompensatedSuffix,
+                     fmt::join(std::span(kCompensationSuffixes).subspan(1), ", ID"));
 }
 
 }  // namespace

@@ -237,8 +237,10 @@ std::string model_density(const Model& model, bool& radial) {
                      share < 1 ? kStrategyDensity : kCosineDensity);
 }
 
-/// M+ms: M's model_pdf / model_draw in namespace base, and the mixture with cosine sampling.
+/// M+ms: M's model_pdf / model_draw in namespace base, and the mixture with cosine sampling. A
+/// scaled compensation: M's own (its scale is constant over wo).
 std::string compensated_density(const Model& model, const Compensated& compensated, bool& radial) {
+  if (scales(compensated.scheme)) return model_density(*compensated.base, radial);
   return fmt::format("namespace base {{  // {}\n{}}}  // namespace base\n{}",
                      expr::comment_text(compensated.base->id()), model_density(*compensated.base, radial),
                      replaced(kCompensatedDensity, "%ENERGY%", glsl::entry_name(model) + "_energy"));
@@ -280,7 +282,9 @@ CppSampler cpp_sampler(const Model& model) {
   prelude += '\n';
   std::string body = kCommon;
   body += density;
-  body += kSampleAndPdf;
+  // A scaled compensation is not reciprocal: wi is its viewer (sampling/sampler.h).
+  body += model.fixes_viewer() ? replaced(kSampleAndPdf, "f(Vec3(0, 0, 1), wi, wo)", "f(Vec3(0, 0, 1), wo, wi)")
+                               : std::string(kSampleAndPdf);
   return {std::move(prelude), std::move(body)};
 }
 

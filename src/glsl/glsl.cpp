@@ -195,30 +195,53 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
 
 void add_entry(ShaderSource& src, const Target& target, const Model& model);
 
-/// M+ms: M's entry, its energy table as a chain of linear pieces (E at M's bound parameter
-/// values, F0 = 1 where M has a Fresnel), and the entry f_M + F_ms f_ms (models/compensated.h).
-void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
+/// M's Fresnel at the cosine `c` (a variable's name) as an expression, for turquin-f's scale.
+std::string fresnel_expression(const Target& target, const fresnel::Channel& f, const std::string& c) {
+  const auto lit = [&](double value) { return target.literal(value); };
+  switch (f.kind) {
+    case fresnel::Kind::one: return lit(1);
+    case fresnel::Kind::schlick:
+      return fmt::format("({} + ({}) * pow(1.0 - {}, {}))", lit(f.f0), lit(f.f90 - f.f0), c, lit(f.exponent));
+    case fresnel::Kind::f82_tint:
+      return fmt::format("clamp({} + ({}) * pow(1.0 - {}, 5.0) - {} * {} * pow(1.0 - {}, 6.0), 0.0, 1.0)", lit(f.f0),
+                         lit(1 - f.f0), c, lit(fresnel::f82_tint_b(f.f0, f.tint)), c, c);
+    case fresnel::Kind::dielectric: return fmt::format("specula_fresnel_dielectric({}, {})", c, lit(f.eta));
+    case fresnel::Kind::conductor: break;
+  }
+  throw InvalidArgument("a conductor's Fresnel is not exported to shading languages");
+}
+
+/// The compensated model's energy table as a function `<entry>_energy(mu)`: a chain of linear pieces
+/// (no arrays: the same text in every shading language).
+void add_energy_table(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated,
+                      bool white) {
   const Model& base = *compensated.base;
-  add_entry(src, target, base);
   const EnergyTable& table = *compensated.table;
   const auto lit = [&](double value) { return target.literal(value); };
   const std::string name = entry_name(model), n = std::to_string(EnergyTable::kNodes);
-  // The table as a chain of linear pieces (no arrays: the same text in every shading language).
   const auto& e = table.e;
   std::string pieces;
   for (std::size_t j = 0; j + 2 < e.size(); ++j)
     pieces += fmt::format("  if (t < {}.0) return {} + ({}) * (t - {}.0);\n", j + 1, lit(e[j]), lit(e[j + 1] - e[j]), j);
   pieces += fmt::format("  return {} + ({}) * (t - {}.0);\n", lit(e[e.size() - 2]), lit(e.back() - e[e.size() - 2]),
                         e.size() - 2);
-  const bool coloured = compensated.fresnel_scale != 1;  // M's Fresnel below 1: E is M's at F0 = 1
   const std::string what = table.from_walk ? "1 - E_ms(mu), E_ms the random walk's multiply scattered albedo,"
                                            : "E(mu)";
   src.add(name + "_energy",
           fmt::format("// {} of {}{} at its parameters here, on {} nodes in s = mu^(1/3) (s = 1/{} ... 1), linear in s;\n"
                       "// max interpolation error {:.2g} ({}). Kulla & Conty 2017.\n"
                       "float {}_energy(float mu) {{\n  float t = pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0) * {}.0 - 1.0;\n{}}}",
-                      what, expr::comment_text(base.id()), coloured ? " with F0 = 1" : "", n, n, table.interpolation_error,
+                      what, expr::comment_text(base.id()), white ? " with F0 = 1" : "", n, n, table.interpolation_error,
                       table.from_walk ? "against the walk, Heitz et al. 2016" : "specula lut", name, n, pieces));
+}
+
+/// M+ms, M+kulla-conty: M's entry, its energy table and the entry f_M + F_ms f_ms (models/compensated.h).
+void add_added_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
+  const Model& base = *compensated.base;
+  const EnergyTable& table = *compensated.table;
+  const bool coloured = compensated.fresnel_scale != 1;  // M's Fresnel below 1: E is M's at F0 = 1
+  add_energy_table(src, target, model, compensated, coloured);
+  const std::string name = entry_name(model);
   const double ms_factor = table.e_avg < 1 ? compensated.fresnel_scale / (kPi * (1 - table.e_avg)) : 0.0;
   const std::string names = parameter_names(base.info());
   const std::string fresnel =
@@ -232,7 +255,42 @@ void add_compensated_entry(ShaderSource& src, const Target& target, const Model&
                             expr::comment_text(model.info().name), expr::comment_text(base.id()), coloured ? "F_ms " : "",
                             table.e_avg, fresnel, name,
                             parameter_list(model.info()), name, name,
-                            lit(ms_factor), entry_name(base), names.empty() ? "" : ", ", names));
+                            target.literal(ms_factor), entry_name(base), names.empty() ? "" : ", ", names));
+}
+
+/// M+turquin-f0, -f, -favg, M+cycles: M's entry, its energy table with F = 1 and the entry
+/// f_M (1 + F_s (1 − E(N·V)) / E(N·V)) (models/compensated.h).
+void add_scaled_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
+  const Model& base = *compensated.base;
+  add_energy_table(src, target, model, compensated, compensated.fresnel.has_value() || compensated.fresnel_scale != 1);
+  const std::string name = entry_name(model), names = parameter_names(base.info());
+  const std::string f_s = compensated.fresnel ? fresnel_expression(target, *compensated.fresnel, "nv")
+                                              : target.literal(compensated.fresnel_scale);
+  if (compensated.fresnel && compensated.fresnel->kind == fresnel::Kind::dielectric)
+    src.add("specula_fresnel_dielectric",
+            "// The exact dielectric Fresnel, Cook & Torrance 1982 eq. 8; total internal reflection where g^2 <= 0.\n"
+            "float specula_fresnel_dielectric(float c, float eta) {\n"
+            "  float g2 = eta * eta - 1.0 + c * c;\n  if (g2 <= 0.0) return 1.0;\n  float g = sqrt(g2);\n"
+            "  float a = (g - c) / (g + c), b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);\n"
+            "  return 0.5 * a * a * (1.0 + b * b);\n}");
+  src.add(name, fmt::format("// {}: f = f_{} (1 + F_s (1 - E(N.V)) / E(N.V)), F_s = {}; not reciprocal. The table holds E\n"
+                            "// at the parameter values it was made for only. Source: Turquin 2019.\n"
+                            "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"
+                            "  if (nl <= 0.0 || nv <= 0.0) return 0.0;\n"
+                            "  float e = {}_energy(nv);\n"
+                            "  float scale = e > 0.0 ? 1.0 + {} * max(0.0, 1.0 - e) / e : 1.0;\n"
+                            "  return {}(N, L, V{}{}) * scale;\n}}",
+                            expr::comment_text(model.info().name), expr::comment_text(base.id()), expr::comment_text(f_s),
+                            name, parameter_list(model.info()), name, f_s, entry_name(base), names.empty() ? "" : ", ",
+                            names));
+}
+
+void add_compensated_entry(ShaderSource& src, const Target& target, const Model& model, const Compensated& compensated) {
+  add_entry(src, target, *compensated.base);
+  if (scales(compensated.scheme))
+    add_scaled_entry(src, target, model, compensated);
+  else
+    add_added_entry(src, target, model, compensated);
 }
 
 /// The model's entry function `specula_<id>(N, L, V, parameters…)` and what it calls.

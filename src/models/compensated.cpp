@@ -1,5 +1,5 @@
-// The energy table's interpolation and Kulla & Conty's multiple-scattering lobe with its Fresnel
-// (models/compensated.h); the table's values come from analysis/energy.h.
+// The energy table's interpolation, Kulla & Conty's multiple-scattering lobe with its Fresnel and
+// Turquin's scale (models/compensated.h); the table's values come from analysis/energy.h.
 #include "specula/models/compensated.h"
 
 #include <algorithm>
@@ -64,13 +64,29 @@ double Compensated::multiple_scattering(double mu_i, double mu_o) const noexcept
   return fresnel_scale * table->multiple_scattering(mu_i, mu_o);
 }
 
-double Compensated::multiple_albedo(double mu_i) const noexcept {
-  return fresnel_scale * std::max(0.0, 1 - table->at(mu_i)) * table->ms_scale;
+double Compensated::scale(double mu_o) const noexcept {
+  const double e = table->at(mu_o);
+  if (!(e > 0)) return 1;  // nothing reflected to scale
+  const double f = fresnel ? (*fresnel)(mu_o) : fresnel_scale;
+  return 1 + f * std::max(0.0, 1 - e) / e;
+}
+
+double Compensated::albedo(double base_albedo, double mu) const noexcept {
+  if (scales(scheme)) return base_albedo * scale(mu);
+  return base_albedo + fresnel_scale * std::max(0.0, 1 - table->at(mu)) * table->ms_scale;
 }
 
 std::string_view compensated_base_id(std::string_view id) noexcept {
-  if (id.size() <= kCompensatedSuffix.size() || !id.ends_with(kCompensatedSuffix)) return {};
-  return id.substr(0, id.size() - kCompensatedSuffix.size());
+  for (const std::string_view suffix : kCompensationSuffixes)
+    if (id.size() > suffix.size() && id.ends_with(suffix)) return id.substr(0, id.size() - suffix.size());
+  return {};
+}
+
+CompensationScheme compensation_scheme_of(std::string_view id) noexcept {
+  for (std::size_t k = 0; k < kCompensationSchemeCount; ++k)
+    if (id.size() > kCompensationSuffixes[k].size() && id.ends_with(kCompensationSuffixes[k]))
+      return static_cast<CompensationScheme>(k);
+  return CompensationScheme::shipped;
 }
 
 }  // namespace specula

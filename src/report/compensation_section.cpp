@@ -8,6 +8,8 @@
 #include "sections.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/queries/compensation.h"
+#include "specula/render/environment.h"
+#include "specula/render/scene.h"
 
 namespace specula::report {
 namespace {
@@ -102,6 +104,75 @@ std::string grazing_chart(Context& context, const queries::Verdict& v, const que
                             "specula verdict --cells", links);
 }
 
+/// GGX at α = 1 and each compensation of it as a model (models/compensated.h), `ggx+ms` last.
+constexpr const char* kFurnaceModels[] = {"ggx", "ggx+kulla-conty", "ggx+turquin-f0", "ggx+turquin-f",
+                                          "ggx+turquin-favg", "ggx+cycles", "ggx+ms"};
+
+/// The sphere of `id` at α = 1 with F0 = `f0` in the white furnace: specular 1, no diffuse, no
+/// ambient, lit by radiance 1 from every direction. What it shows is its albedo at each pixel's
+/// viewing angle.
+render::Image furnace_sphere(const std::string& id, double f0, int size, int samples) {
+  const Model model = make_model(id, {{"alpha", 1.0}, {"f0", f0}});
+  const render::Scene scene =
+      render::make_scene(model, {.lights = std::vector<render::Light>{}, .diffuse = render::Rgb{0, 0, 0},
+                                 .specular = render::Rgb{1, 1, 1}, .ambient = render::Rgb{0, 0, 0}});
+  return render::render_environment(scene, render::Environment::uniform({1, 1, 1}), {size, size}, {samples, 1});
+}
+
+/// The coloured furnace: one render per channel with that channel's F0 (GGX's Schlick Fresnel is
+/// one channel), put together as R, G and B.
+render::Image coloured_furnace_sphere(const std::string& id, const render::Rgb& f0, int size, int samples) {
+  render::Image image(size, size);
+  const double channel_f0[3] = {f0.r, f0.g, f0.b};
+  for (int c = 0; c < 3; ++c) {
+    const render::Image grey = furnace_sphere(id, channel_f0[c], size, samples);
+    for (std::size_t k = c; k < image.samples().size(); k += 3) image.samples()[k] = grey.samples()[k];
+  }
+  return image;
+}
+
+/// Gold's F0 per channel, from the verdict's F82-tint channels of its complex index.
+render::Rgb gold_f0() {
+  double f0[3] = {1, 1, 1};
+  int c = 0;
+  for (const auto& f : queries::verdict_fresnels())
+    if (f.family == "gold" && c < 3) f0[c++] = f.channel(1.0);
+  return {f0[0], f0[1], f0[2]};
+}
+
+std::string furnace_figure(Context& context) {
+  const int size = context.quick() ? 96 : 160, samples = context.quick() ? 8 : 64;
+  const render::Rgb gold = gold_f0();
+  std::vector<render::LabelledImage> white, coloured;
+  for (const std::string id : kFurnaceModels) {
+    const std::string_view base = compensated_base_id(id);
+    const std::string label = base.empty() ? "none" : id.substr(base.size() + 1);  // the suffix, without its '+'
+    white.push_back({furnace_sphere(id, 1, size, samples), label});
+    coloured.push_back({coloured_furnace_sphere(id, gold, size, samples), label});
+  }
+  const std::string models = fmt::format("{}", fmt::join(kFurnaceModels, ", "));
+  return panel_figure(context, "furnace-white", white, std::nullopt,
+                      fmt::format("The white furnace (radiance 1 from every direction; specular 1, nothing else) of "
+                                  "GGX at α = 1 with F = 1 (none) and of each compensation of it as a model, labelled by "
+                                  "its suffix (ggx+kulla-conty, …), {}×{} pixels, {} "
+                                  "samples per pixel: a sphere that conserves energy is flat and as bright as its "
+                                  "surroundings; the uncompensated one darkens toward its rim, where it loses most.",
+                                  size, size, samples),
+                      fmt::format("specula render --model ggx+cycles -p alpha=1 --env white --size {0}x{0} --samples {1} "
+                                  "--out furnace.png   # each of: {2}",
+                                  size, samples, models)) +
+         panel_figure(context, "furnace-gold", coloured, std::nullopt,
+                      fmt::format("The same spheres with gold's F0 per channel ({:.3f}, {:.3f}, {:.3f}; Schlick's F), "
+                                  "one render per channel: what each compensation gives back of the coloured light "
+                                  "that single scattering loses. <code>ggx+ms</code> (last) is the random walk's own "
+                                  "multiple scattering; a compensation whose sphere is brighter or paler than it "
+                                  "gives back too much or too little (the verdict's table above, in numbers).",
+                                  gold.r, gold.g, gold.b),
+                      fmt::format("specula render --model ggx+cycles -p alpha=1 -p f0={:.3f} --env white --size {}x{} "
+                                  "--samples {} --out red.png   # a channel at a time",
+                                  gold.r, size, size, samples));
+}
+
 }  // namespace
 
 Section compensation_section(Context& context) {
@@ -149,6 +220,7 @@ Section compensation_section(Context& context) {
       show(best_worst, 2), show(make_model("ggx+ms", {{"f0", 0.5}}).compensated()->table->albedo_error, 2),
       show(shipped, 2));
   html += grazing_chart(context, v, s, links);
+  html += furnace_figure(context);
   html += fmt::format("<p class=\"files\">Files: {}. Regenerate: <code>specula verdict</code> (the summary), "
                       "<code>specula verdict --cells</code> (every cell).</p>\n",
                       links);

@@ -54,7 +54,7 @@ BlockTally tally(const SamplerUnderTest& sampler, const Vec3& wi, const Grid& gr
       ++t.outside;
       continue;
     }
-    const double f = (*sampler.model)(kNormal, wi, s.wo);
+    const double f = sampler.model->from_fixed(kNormal, wi, s.wo);
     if (!std::isfinite(f)) {
       ++t.non_finite;
       continue;

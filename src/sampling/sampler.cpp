@@ -71,14 +71,16 @@ struct Sampler::Impl {
   Radial radial;
   double alpha = 0;  ///< GGX visible normals
   double share = 0;  ///< cosine-weighted share
-  /// M+ms (models/compensated.h): M's sampler and the energy table; see base_probability.
+  /// A compensated model (models/compensated.h): M's sampler, and for an added f_ms the energy
+  /// table (see base_probability); a scaled one is sampled as M alone, its scale being constant
+  /// over the directions sampled (ω_i is its viewer).
   std::unique_ptr<Sampler> base;
   std::shared_ptr<const EnergyTable> table;
 
   explicit Impl(const Model& m) : model(m) {
     if (const Compensated* compensated = model.compensated()) {
       base = std::make_unique<Sampler>(*compensated->base);
-      table = compensated->table;
+      if (!scales(compensated->scheme)) table = compensated->table;
       method = base->method();
       return;
     }
@@ -153,16 +155,18 @@ struct Sampler::Impl {
   /// M+ms: a one-sample mixture of M's sampler, with probability E(μ_i) (the energy f_M reflects),
   /// and cosine-weighted sampling, with 1 − E(μ_i) (what f_ms, ∝ (1 − E(μ_o)) cos θ_o, reflects):
   /// each strategy in proportion to the energy of the part it samples.
-  double base_probability(const Vec3& wi) const noexcept { return std::clamp(table->at(wi.z), 0.0, 1.0); }
+  double base_probability(const Vec3& wi) const noexcept { return table ? std::clamp(table->at(wi.z), 0.0, 1.0) : 1.0; }
 
   Vec3 compensated_sample(const Vec3& wi, double u1, double u2) const noexcept {
     const double p = base_probability(wi);
+    if (!table) return base->sample(wi, u1, u2).wo;
     if (u1 < p) return base->sample(wi, std::min(u1 / p, kBelowOne), u2).wo;
     return cosine_direction<Vec3>(std::min((u1 - p) / (1 - p), kBelowOne), u2);
   }
 
   double pdf(const Vec3& wi, const Vec3& wo) const noexcept {
     if (!(wo.z > 0) || !(wi.z > 0)) return 0;
+    if (base && !table) return base->pdf(wi, wo);
     if (base) {
       const double p = base_probability(wi);
       return p * base->pdf(wi, wo) + (1 - p) * wo.z / kPi;
@@ -198,7 +202,7 @@ Sample Sampler::sample(const Vec3& wi, double u1, double u2) const noexcept {
 double Sampler::pdf(const Vec3& wi, const Vec3& wo) const noexcept { return impl_->pdf(wi, wo); }
 
 ValuePdf Sampler::eval_pdf(const Vec3& wi, const Vec3& wo) const noexcept {
-  return {impl_->model(kNormal, wi, wo), impl_->pdf(wi, wo)};
+  return {impl_->model.from_fixed(kNormal, wi, wo), impl_->pdf(wi, wo)};
 }
 
 const Model& Sampler::model() const noexcept { return impl_->model; }
@@ -219,6 +223,7 @@ Sampler::Table Sampler::table() const noexcept {
 
 std::string Sampler::description() const {
   const Impl& s = *impl_;
+  if (s.base && !s.table) return s.base->description();
   if (s.base)
     return fmt::format("{} with probability E(mu_i), else cosine-weighted (the multiple-scattering lobe)",
                        s.base->description());

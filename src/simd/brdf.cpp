@@ -395,7 +395,7 @@ void compensated_batch(const Compensated& model, Tier tier, const DirectionBatch
   for (std::size_t i = 0; i < count; ++i) {
     const double nl = dirs.nx[i] * dirs.lx[i] + dirs.ny[i] * dirs.ly[i] + dirs.nz[i] * dirs.lz[i];
     const double nv = dirs.nx[i] * dirs.vx[i] + dirs.ny[i] * dirs.vy[i] + dirs.nz[i] * dirs.vz[i];
-    out[i] = nl > 0 && nv > 0 ? out[i] + model.multiple_scattering(nl, nv) : 0.0;
+    out[i] = nl > 0 && nv > 0 ? model.apply(out[i], nl, nv) : 0.0;
   }
 }
 

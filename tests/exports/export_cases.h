@@ -1,7 +1,7 @@
 #pragma once
 // The models every export test walks: each registered model (built-in, and the user-written ones of
 // tests/user_models_environment.cpp) at its defaults, lobes in both forms, an inline lobe and BRDF,
-// and compensated models (M+ms) of a BRDF and a lobe; with a C++ name for each and files in a fresh
+// and compensated models (M+ms, and each other compensation suffix) of a BRDF and a lobe; with a C++ name for each and files in a fresh
 // temporary directory.
 #include <filesystem>
 #include <fmt/format.h>
@@ -27,6 +27,12 @@ inline std::vector<Model> export_cases() {
   cases.push_back(make_model("brdf: rho/pi * (1 + a*nh^4)", {{"rho", 0.5}, {"a", 0.25}}));
   cases.push_back(make_model("ggx+ms", {{"alpha", 0.4}}));
   cases.push_back(make_model("log-normalized+ms", {{"n", 5}}));
+  // The other compensations (models/compensated.h): the added one with its F_ms, the scaled ones
+  // with a constant F_s, with Schlick's F(N·V) and with the exact dielectric's.
+  cases.push_back(make_model("ggx+kulla-conty", {{"alpha", 0.4}, {"f0", 0.5}}));
+  cases.push_back(make_model("ggx+cycles", {{"alpha", 0.7}, {"f0", 0.2}}));
+  cases.push_back(make_model("ggx+turquin-f", {{"alpha", 0.4}, {"f0", 0.5}}));
+  cases.push_back(make_model("cook-torrance-1982+turquin-f", {{"m", 0.4}}));
   return cases;
 }
 

@@ -45,9 +45,14 @@ TEST(Glsl, EveryModelCompilesInEveryDialect) {
       }
 }
 
-// Compensated models (M+ms) are not listed by models(): a BRDF's and a lobe's, in every dialect.
+// Compensated models (M+ms and the other suffixes) are not listed by models(): a BRDF's and a
+// lobe's, added and scaled, with each kind of Fresnel a scale reads, in every dialect.
 TEST(Glsl, CompensatedModelsCompileInEveryDialect) {
-  for (const Model& model : {make_model("ggx+ms", {{"alpha", 0.4}}), make_model("log-normalized+ms", {{"n", 5}})})
+  for (const Model& model :
+       {make_model("ggx+ms", {{"alpha", 0.4}}), make_model("log-normalized+ms", {{"n", 5}}),
+        make_model("ggx+kulla-conty", {{"f0", 0.5}}), make_model("ggx+cycles", {{"f0", 0.5}}),
+        make_model("ggx+turquin-f", {{"f0", 0.5}}), make_model("cook-torrance-1982+turquin-f"),
+        make_model("log-normalized+turquin-f", {{"n", 5}})})
     for (const Dialect dialect : kDialects) {
       const auto check = testing::validate_glsl(test_shader(model, dialect), "frag");
       EXPECT_TRUE(check.ok) << model.id() << " " << to_string(dialect) << "\n" << check.log;

@@ -77,7 +77,9 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"schlick-normalized", {{"n", 2000}}, {}}, Case{"gauss", {{"n", 3000}}, {}},
                     Case{"ggx", {{"alpha", 0.01}}, {}}, Case{"ggx", {{"alpha", 1}}, {}},
                     Case{"cook-torrance", {{"m", 0.05}}, {}}, Case{"ward", {{"alpha", 0.02}}, {}},
-                    Case{"my-ggx", {{"alpha", 0.05}}, {}}, Case{"lobe: c^n", {{"n", 3000}}, {}}),
+                    Case{"my-ggx", {{"alpha", 0.05}}, {}}, Case{"lobe: c^n", {{"n", 3000}}, {}},
+                    // The compensations' samplers (models/compensated.h): added, and scaled (ω_i the viewer).
+                    Case{"ggx+kulla-conty", {{"f0", 0.5}}, {}}, Case{"ggx+turquin-f", {{"alpha", 0.8}, {"f0", 0.2}}, {}}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
 
 // Negative controls: a sampler broken in one way, and the check that must catch it.

@@ -121,8 +121,9 @@ class Model {
   double param(std::string_view name) const;
 
   bool is_lobe() const noexcept { return std::holds_alternative<LobeModel>(impl_); }
-  /// M+ms: its base model M and M's energy table; nullptr for any other model. The one accessor
-  /// of compensation: every consumer composes f_M + f_ms from these.
+  /// M+ms (or another compensation suffix): its base model M, M's energy table and the scheme;
+  /// nullptr for any other model. The one accessor of compensation: every consumer composes f
+  /// from f_M with these (Compensated::apply).
   const Compensated* compensated() const noexcept { return std::get_if<Compensated>(&impl_); }
   /// Preconditions for the next three: is_lobe().
   const lobes::Lobe& lobe() const noexcept { return std::get<LobeModel>(impl_).lobe; }
@@ -143,6 +144,18 @@ class Model {
   double operator()(const Vec3& n, const Vec3& l, const Vec3& v) const noexcept {
     return std::visit([&](const auto& m) { return eval(m, n, l, v); }, impl_);
   }
+  /// Whether the direction an albedo holds fixed is V (the viewer's albedo, integrated over L):
+  /// true for a scaled compensation, which is not reciprocal (models/compensated.h); for any
+  /// other model it is L, and by reciprocity the two albedos are one.
+  bool fixes_viewer() const noexcept {
+    const Compensated* c = compensated();
+    return c && scales(c->scheme);
+  }
+  /// f with ω_fixed the direction an albedo or a sampler holds fixed and ω the one it integrates
+  /// over: f(N, ω_fixed, ω), or f(N, ω, ω_fixed) where fixes_viewer().
+  double from_fixed(const Vec3& n, const Vec3& fixed, const Vec3& other) const noexcept {
+    return fixes_viewer() ? (*this)(n, other, fixed) : (*this)(n, fixed, other);
+  }
 
   friend Model make_model(std::shared_ptr<const ModelInfo> info, const ParamValues& params,
                           std::optional<Form> form);
@@ -154,11 +167,11 @@ class Model {
   static double eval(const FullBrdf& b, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
     return std::visit([&](const auto& brdf) { return brdf(n, l, v); }, b);
   }
-  /// f_M + F_ms f_ms (models/compensated.h).
+  /// f_M + F_ms f_ms, or f_M times Turquin's scale (models/compensated.h).
   static double eval(const Compensated& c, const Vec3& n, const Vec3& l, const Vec3& v) noexcept {
     const double nl = dot(n, l), nv = dot(n, v);
     if (nl <= 0 || nv <= 0) return 0;
-    return (*c.base)(n, l, v) + c.multiple_scattering(nl, nv);
+    return c.apply((*c.base)(n, l, v), nl, nv);
   }
 
   std::shared_ptr<const ModelInfo> info_;

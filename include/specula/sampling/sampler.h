@@ -5,6 +5,9 @@
 //
 // Frame: the normal N = +z; ω_i points toward the light (L of docs/math.md §1), ω_o toward the
 // viewer (V); f(ω_i, ω_o) is the model's f(N, L, V). Densities are per unit solid angle of ω_o.
+// A scaled compensation (models/compensated.h), which is not reciprocal, is sampled the other way
+// round, as a renderer holds the viewer fixed: ω_i is V and f(ω_i, ω_o) is f(N, ω_o, ω_i)
+// (Model::from_fixed); its scale is constant over ω_o, so M's sampler samples it.
 //
 // Each model is sampled by the method its family states (models/sampling_method.h): about R for lobes in
 // `rv` form, over the half vector H for lobes in `nh` form (ω_o = 2(ω_i·H)H − ω_i, pdf(ω_o) =
