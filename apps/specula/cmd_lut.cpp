@@ -98,7 +98,10 @@ io::Table lut_table(const analysis::AlbedoLut& lut, const Sweep& sweep) {
 
 std::string joined(const std::vector<double>& v) {
   std::string text;
-  for (const double x : v) text += (text.empty() ? "" : ",") + io::format_number(x);
+  for (const double x : v) {
+    if (!text.empty()) text += ',';
+    text += io::format_number(x);
+  }
   return text;
 }
 
