@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "lut_code.h"
 #include "specula/analysis/energy.h"
+#include "specula/catalogue/catalogue.h"
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
 #include "specula/io/sha256.h"
@@ -25,6 +26,7 @@ struct LutOptions {
   std::string sweep;
   std::string mu = "0.03125:1@32";
   bool average = false;
+  bool schlick_split = false;
   std::string format = "csv";
   std::optional<int> round;
   std::string out;
@@ -61,12 +63,36 @@ Sweep sweep_of(const LutOptions& o) {
   return s;
 }
 
-analysis::ModelAt model_at(const LutOptions& o, const Sweep& sweep) {
-  return [spec = o.model.spec(), name = sweep.name](double p) {
+/// The model at the sweep's value p, with its f0 set where `f0` is given (--schlick-split).
+analysis::ModelAt model_at(const LutOptions& o, const Sweep& sweep, std::optional<double> f0 = std::nullopt) {
+  return [spec = o.model.spec(), name = sweep.name, f0](double p) {
     queries::ModelSpec at = spec;
     if (!name.empty()) at.params[name] = p;
+    if (f0) at.params["f0"] = *f0;
     return queries::make(at, queries::Spelling::option);
   };
+}
+
+/// One table of the output: the plain E, or E at one end of F0 with --schlick-split.
+struct Channel {
+  std::string suffix;  ///< "", "_f0_0" or "_f0_1"
+  analysis::ModelAt at;
+  analysis::AlbedoLut lut;
+};
+
+/// --schlick-split (Filament's DFG split, Karis 2013): where the model's Fresnel is Schlick's,
+/// F = F0 + (F90 − F0)(1 − c)^p is linear in F0, and so is E: E(F0) = E(0) + F0 (E(1) − E(0))
+/// exactly. Refused for any other model and where f0 is given or swept.
+std::vector<Channel> channels_of(const LutOptions& o, const Sweep& sweep) {
+  if (!o.schlick_split) return {{"", model_at(o, sweep), {}}};
+  if (sweep.name == "f0" || o.model.param_values().contains("f0"))
+    throw InvalidArgument("--schlick-split tabulates E at f0 = 0 and f0 = 1 itself: give f0 neither to --sweep nor to --param");
+  const std::optional<fresnel::Channel> f = fresnel_of(model_at(o, sweep)(sweep.values.front()));
+  if (!f || f->kind != fresnel::Kind::schlick)
+    throw InvalidArgument(fmt::format("--schlick-split: {} has no Schlick Fresnel in f0 (E is linear in F0 only for "
+                                      "Schlick's: ggx, cook-torrance)",
+                                      o.model.id));
+  return {{"_f0_0", model_at(o, sweep, 0.0), {}}, {"_f0_1", model_at(o, sweep, 1.0), {}}};
 }
 
 /// Progress lines on stderr at every tenth of a long table (off with --quiet).
@@ -79,18 +105,23 @@ analysis::Progress progress_of(const LutOptions& o, std::string_view what) {
   };
 }
 
-io::Table lut_table(const analysis::AlbedoLut& lut, const Sweep& sweep) {
+io::Table lut_table(const std::vector<Channel>& channels, const Sweep& sweep) {
+  const analysis::AlbedoLut& lut = channels.front().lut;
   io::Table t;
   if (!sweep.name.empty()) t.columns.push_back(sweep.name);
-  t.columns.insert(t.columns.end(), {"mu", "E"});
-  if (!lut.e_avg.empty()) t.columns.push_back("E_avg");
+  t.columns.push_back("mu");
+  for (const Channel& c : channels) t.columns.push_back("E" + c.suffix);
+  if (!lut.e_avg.empty())
+    for (const Channel& c : channels) t.columns.push_back("E_avg" + c.suffix);
   t.key_columns = sweep.name.empty() ? 1 : 2;
   for (std::size_t i = 0; i < lut.p.size(); ++i)
     for (std::size_t j = 0; j < lut.mu.size(); ++j) {
       std::vector<double> row;
       if (!sweep.name.empty()) row.push_back(lut.p[i]);
-      row.insert(row.end(), {lut.mu[j], lut.at(i, j)});
-      if (!lut.e_avg.empty()) row.push_back(lut.e_avg[i]);
+      row.push_back(lut.mu[j]);
+      for (const Channel& c : channels) row.push_back(c.lut.at(i, j));
+      if (!lut.e_avg.empty())
+        for (const Channel& c : channels) row.push_back(c.lut.e_avg[i]);
       t.rows.push_back(std::move(row));
     }
   return t;
@@ -116,38 +147,56 @@ std::string provenance_line(const Provenance& p) {
   return expr::comment_text(fmt::format("{}; specula {}; sha256 of the values {}", p.command, p.version, p.sha256));
 }
 
-render::Metadata image_metadata(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep,
-                                const Provenance& provenance) {
+render::Metadata image_metadata(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+                                const Provenance& provenance, const std::string& layout) {
+  const analysis::AlbedoLut& lut = channels.front().lut;
   render::Metadata meta{{"Software", "specula " + provenance.version}, {"command", provenance.command},
-                        {"sha256", provenance.sha256}, {"model", o.model.id},
-                        {"layout", "x: mu, y: " + (sweep.name.empty() ? std::string("-") : sweep.name) + " (top row first)"},
-                        {"mu", joined(lut.mu)}};
+                        {"sha256", provenance.sha256}, {"model", o.model.id}, {"layout", layout}, {"mu", joined(lut.mu)}};
   for (const auto& p : o.model.params) meta.emplace_back("param", p);
   if (!sweep.name.empty()) meta.emplace_back(sweep.name, joined(lut.p));
-  if (!lut.e_avg.empty()) meta.emplace_back("E_avg", joined(lut.e_avg));
+  for (const Channel& c : channels)
+    if (!c.lut.e_avg.empty()) meta.emplace_back("E_avg" + c.suffix, joined(c.lut.e_avg));
   return meta;
 }
 
-void write_exr_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep, const Provenance& provenance) {
+std::string sweep_axis(const Sweep& sweep) { return sweep.name.empty() ? std::string("-") : sweep.name; }
+
+/// The plain table in every channel; --schlick-split's E at f0 = 0 in R and at f0 = 1 in G.
+void write_exr_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+                   const Provenance& provenance) {
+  const analysis::AlbedoLut& lut = channels.front().lut;
   render::Image image(static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size()));
   for (std::size_t i = 0; i < lut.p.size(); ++i)
     for (std::size_t j = 0; j < lut.mu.size(); ++j) {
       const double e = lut.at(i, j);
-      image.set(static_cast<int>(j), static_cast<int>(i), {e, e, e});
+      image.set(static_cast<int>(j), static_cast<int>(i),
+                channels.size() > 1 ? render::Rgb{e, channels[1].lut.at(i, j), 0} : render::Rgb{e, e, e});
     }
+  std::string layout = "x: mu, y: " + sweep_axis(sweep) + " (top row first)";
+  if (channels.size() > 1) layout += "; R: E at f0 = 0, G: E at f0 = 1, E(f0) = R + f0 (G - R)";
   render::write_exr(o.out, image, o.format == "exr-half" ? render::ExrPixel::half : render::ExrPixel::float32,
-                    image_metadata(o, lut, sweep, provenance));
+                    image_metadata(o, channels, sweep, provenance, layout));
 }
 
 /// 16-bit codes round(65535 E / scale), scale = 1, or max E when a model reflects more than it
-/// receives; the scale is in the metadata and on stderr.
-void write_png16_lut(const LutOptions& o, const analysis::AlbedoLut& lut, const Sweep& sweep, const Provenance& provenance) {
-  const double scale = std::max(1.0, *std::max_element(lut.e.begin(), lut.e.end()));
+/// receives; the scale is in the metadata and on stderr. --schlick-split's two tables one below
+/// the other (a gray image has one channel): E at f0 = 0 on top.
+void write_png16_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+                     const Provenance& provenance) {
+  double scale = 1;
+  for (const Channel& c : channels) scale = std::max(scale, *std::max_element(c.lut.e.begin(), c.lut.e.end()));
   std::vector<std::uint16_t> codes;
-  for (const double e : lut.e) codes.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(e / scale, 0.0, 1.0) * 65535)));
-  render::Metadata meta = image_metadata(o, lut, sweep, provenance);
+  for (const Channel& c : channels)
+    for (const double e : c.lut.e)
+      codes.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(e / scale, 0.0, 1.0) * 65535)));
+  const analysis::AlbedoLut& lut = channels.front().lut;
+  std::string layout = "x: mu, y: " + sweep_axis(sweep) + " (top row first)";
+  if (channels.size() > 1)
+    layout += fmt::format("; rows 0-{0}: E at f0 = 0, rows {1}-{2}: E at f0 = 1, E(f0) = E0 + f0 (E1 - E0)",
+                          lut.p.size() - 1, lut.p.size(), 2 * lut.p.size() - 1);
+  render::Metadata meta = image_metadata(o, channels, sweep, provenance, layout);
   meta.emplace_back("scale", fmt::format("E = code / 65535 * {}", io::format_number(scale)));
-  render::write_png16(o.out, static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size()), codes, meta);
+  render::write_png16(o.out, static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size() * channels.size()), codes, meta);
   if (!o.quiet) fmt::print(stderr, "lut: 16-bit codes, E = code / 65535 * {}\n", io::format_number(scale));
 }
 
@@ -161,15 +210,18 @@ std::string command_line(const LutOptions& o) {
   std::string text = fmt::format("specula lut --model {}", o.model.id);
   for (const auto& p : o.model.params) text += " -p " + p;
   if (!o.sweep.empty()) text += " --sweep " + o.sweep;
-  text += " --mu " + o.mu + (o.average ? " --average" : "") + " --format " + o.format;
+  text += " --mu " + o.mu + (o.average ? " --average" : "") + (o.schlick_split ? " --schlick-split" : "") +
+          " --format " + o.format;
   return text;
 }
 
-/// NumPy's .npy (format 1.0): E as little-endian float64 of shape (p, mu), or (mu) for one row.
-/// Its header takes no other keys, so the provenance goes to stderr (unless --quiet).
-std::string npy_of(const analysis::AlbedoLut& lut, const Sweep& sweep) {
-  const std::string shape = sweep.name.empty() ? fmt::format("({},)", lut.mu.size())
-                                               : fmt::format("({}, {})", lut.p.size(), lut.mu.size());
+/// NumPy's .npy (format 1.0): E as little-endian float64 of shape (p, mu), or (mu) for one row;
+/// --schlick-split's two tables as a first axis of 2 (E at f0 = 0, then at f0 = 1). Its header
+/// takes no other keys, so the provenance goes to stderr (unless --quiet).
+std::string npy_of(const std::vector<Channel>& channels, const Sweep& sweep) {
+  const analysis::AlbedoLut& lut = channels.front().lut;
+  std::string shape = sweep.name.empty() ? fmt::format("{},", lut.mu.size()) : fmt::format("{}, {}", lut.p.size(), lut.mu.size());
+  shape = channels.size() > 1 ? fmt::format("({}, {})", channels.size(), shape) : "(" + shape + ")";
   std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': {}, }}", shape);
   header.append(63 - (10 + header.size()) % 64, ' ');  // the data starts on a multiple of 64 bytes
   header += '\n';
@@ -178,12 +230,16 @@ std::string npy_of(const analysis::AlbedoLut& lut, const Sweep& sweep) {
   out += '\x00';
   out += static_cast<char>(header.size() & 0xff);
   out += static_cast<char>(header.size() >> 8);
-  return out + header + io::little_endian_bytes(lut.e);
+  std::vector<double> e;
+  for (const Channel& c : channels) e.insert(e.end(), c.lut.e.begin(), c.lut.e.end());
+  return out + header + io::little_endian_bytes(e);
 }
 
-Provenance provenance_of(const LutOptions& o, const analysis::AlbedoLut& lut) {
-  std::vector<double> values = lut.e;
-  values.insert(values.end(), lut.e_avg.begin(), lut.e_avg.end());
+/// The values hashed: each channel's E p-major, then each channel's E_avg.
+Provenance provenance_of(const LutOptions& o, const std::vector<Channel>& channels) {
+  std::vector<double> values;
+  for (const Channel& c : channels) values.insert(values.end(), c.lut.e.begin(), c.lut.e.end());
+  for (const Channel& c : channels) values.insert(values.end(), c.lut.e_avg.begin(), c.lut.e_avg.end());
   return {command_line(o), std::string(build_version()), io::sha256_of_doubles(values)};
 }
 
@@ -196,35 +252,41 @@ void run(const LutOptions& o) {
   for (const double m : mu)
     if (!(m >= analysis::kMinMu && m <= 1))
       throw InvalidArgument(fmt::format("--mu: {} is outside [{:g}, 1]", m, analysis::kMinMu));
-  if (sweep.values.size() * mu.size() > kMaxLutCells)
-    throw InvalidArgument(fmt::format("{} x {} cells is more than {}", sweep.values.size(), mu.size(), kMaxLutCells));
-  if (o.average && sweep.values.size() > kMaxLutAverages)
-    throw InvalidArgument(fmt::format("--average: {} values of {} is more than {} (each E_avg costs 100-400 cells)",
-                                      sweep.values.size(), sweep.name, kMaxLutAverages));
+  const std::size_t tables = o.schlick_split ? 2 : 1;  // the cells' cost counts each table
+  if (tables * sweep.values.size() * mu.size() > kMaxLutCells)
+    throw InvalidArgument(fmt::format("{}{} x {} cells is more than {}", tables > 1 ? "2 tables of " : "",
+                                      sweep.values.size(), mu.size(), kMaxLutCells));
+  if (o.average && tables * sweep.values.size() > kMaxLutAverages)
+    throw InvalidArgument(fmt::format("--average: {}{} values of {} is more than {} (each E_avg costs 100-400 cells)",
+                                      tables > 1 ? "2 tables of " : "", sweep.values.size(), sweep.name, kMaxLutAverages));
   const bool code = o.format == "cpp" || o.format == "glsl" || o.format == "hlsl";
   if (code) require_even_spacing("--mu", mu, o.format), require_even_spacing("--sweep", sweep.values, o.format);
-  const analysis::ModelAt at = model_at(o, sweep);
-  at(sweep.values.front());  // a bad model or parameter fails before any work
-  const analysis::AlbedoLut lut = analysis::albedo_lut(at, sweep.values, mu, o.average, progress_of(o, "cells"));
-  const Provenance provenance = provenance_of(o, lut);
-  if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, lut, sweep, provenance);
-  if (o.format == "png16") return write_png16_lut(o, lut, sweep, provenance);
+  std::vector<Channel> channels = channels_of(o, sweep);
+  for (const Channel& c : channels) c.at(sweep.values.front());  // a bad model or parameter fails before any work
+  for (Channel& c : channels)
+    c.lut = analysis::albedo_lut(c.at, sweep.values, mu, o.average, progress_of(o, "cells" + c.suffix));
+  const Provenance provenance = provenance_of(o, channels);
+  if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, channels, sweep, provenance);
+  if (o.format == "png16") return write_png16_lut(o, channels, sweep, provenance);
   if (o.format == "npy") {
-    write_output(o.out, npy_of(lut, sweep));
+    write_output(o.out, npy_of(channels, sweep));
     if (!o.quiet) fmt::print(stderr, "lut: {}\n", provenance_line(provenance));
     return;
   }
   if (!code) {
-    io::Table table = lut_table(lut, sweep);
+    io::Table table = lut_table(channels, sweep);
     table.meta = {{"model", o.model.id}, {"command", provenance.command}, {"version", provenance.version},
                   {"sha256", provenance.sha256}};
     if (o.format == "json") return write_output(o.out, io::to_json(table, o.round));
     return write_output(o.out, "# " + provenance_line(provenance) + "\n" + io::to_csv(table, o.round));
   }
-  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name,
-                                   analysis::lut_interpolation_error(lut, at, progress_of(o, "interpolation error"))};
-  if (o.format == "cpp") return write_output(o.out, lut_cpp(lut, description));
-  write_output(o.out, o.format == "glsl" ? lut_glsl(lut, description) : lut_hlsl(lut, description));
+  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name};
+  std::vector<LutChannel> code_channels;
+  for (const Channel& c : channels)
+    code_channels.push_back({c.suffix, &c.lut,
+                             analysis::lut_interpolation_error(c.lut, c.at, progress_of(o, "interpolation error" + c.suffix))});
+  if (o.format == "cpp") return write_output(o.out, lut_cpp(code_channels, description));
+  write_output(o.out, o.format == "glsl" ? lut_glsl(code_channels, description) : lut_hlsl(code_channels, description));
 }
 
 }  // namespace
@@ -240,6 +302,9 @@ void add_lut_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--average", o->average,
                 "Also E_avg(p) = 2∫₀¹ E(μ) μ dμ (by quadrature in μ, not from the grid); at most 256 values of p");
+  cmd->add_flag("--schlick-split", o->schlick_split,
+                "Two tables, E at f0 = 0 and at f0 = 1, for a model with Schlick's Fresnel (ggx, cook-torrance): E is "
+                "linear in F0, E(F0) = E0 + F0 (E1 - E0) exactly (Filament's DFG split); every format holds both");
   cmd->add_option("--format", o->format, "csv, json, exr (float), exr-half, png16 (16-bit gray), npy (NumPy float64), "
                                          "cpp, glsl or hlsl (arrays with their bilinear lookup and its measured error)")
       ->capture_default_str()->check(CLI::IsMember({"csv", "json", "exr", "exr-half", "png16", "npy", "cpp", "glsl", "hlsl"}));
@@ -255,11 +320,14 @@ void add_lut_command(CLI::App& app) {
       "the SHA-256 of its values (E p-major, then E_avg, as little-endian doubles): CSV on a first line\n"
       "'# ...', JSON and image metadata as keys, code in its header comment; npy's header takes no other\n"
       "keys, so npy prints it on stderr.\n"
+      "--schlick-split: CSV and JSON columns E_f0_0, E_f0_1 (and E_avg_f0_0, E_avg_f0_1); EXR in R and G; png16\n"
+      "the two tables one below the other; npy of shape (2, p, mu); code has both and energy(mu, p, f0).\n"
       "Other parameters take -p NAME=VALUE. Examples:\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --average --out ggx_E.csv\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@16 --mu 0.05:1@16 --average --format glsl -o ggx_E.glsl\n"
       "  specula lut --model lambert -p rho=0.5 --mu 0.1:1@10 --average\n"
-      "  specula lut --model ggx --sweep alpha=0.05:1@64 --mu 0.015625:1@64 --format png16 -o ggx_E.png");
+      "  specula lut --model ggx --sweep alpha=0.05:1@64 --mu 0.015625:1@64 --format png16 -o ggx_E.png\n"
+      "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --schlick-split --format glsl -o dfg.glsl");
   cmd->callback([o] { run(*o); });
 }
 

@@ -25,7 +25,8 @@ std::string float_list(const std::vector<double>& values, std::size_t per_line) 
   return text;
 }
 
-std::string header_comment(const analysis::AlbedoLut& lut, const LutDescription& d) {
+std::string header_comment(std::span<const LutChannel> channels, const LutDescription& d) {
+  const analysis::AlbedoLut& lut = *channels.front().lut;
   const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
   std::string text = fmt::format(
       "// {}\n// Directional albedo E(mu, {}) of {} (mu = cos theta_i) by specula's deterministic cubature\n"
@@ -34,38 +35,62 @@ std::string header_comment(const analysis::AlbedoLut& lut, const LutDescription&
       expr::comment_text(d.command), d.param.empty() ? "-" : d.param, expr::comment_text(d.model), mu.first, mu.step,
       mu.count);
   if (!d.param.empty()) text += fmt::format("; {} = {:.9g} + {:.9g} i, i < {}", d.param, p.first, p.step, p.count);
-  text += fmt::format(".\n// Bilinear interpolation error, max |lookup - cubature| at the cells' centres: {:.3g}", d.error.e);
-  if (!lut.e_avg.empty()) text += fmt::format("; E_avg (linear in {}): {:.3g}", d.param.empty() ? "-" : d.param, d.error.e_avg);
+  if (channels.size() > 1)
+    text += ".\n// Two tables, E at F0 = 0 (_f0_0) and at F0 = 1 (_f0_1): with Schlick's Fresnel E is linear in F0,\n"
+            "// E(F0) = E_f0_0 + F0 (E_f0_1 - E_f0_0) exactly";
+  for (const LutChannel& c : channels) {
+    text += fmt::format(".\n// {}Bilinear interpolation error, max |lookup - cubature| at the cells' centres: {:.3g}",
+                        c.suffix.empty() ? "" : "E" + c.suffix + ": ", c.error.e);
+    if (!c.lut->e_avg.empty())
+      text += fmt::format("; E_avg (linear in {}): {:.3g}", d.param.empty() ? "-" : d.param, c.error.e_avg);
+  }
   return text + ". Outside the grid the lookup clamps.\n";
 }
 
 }  // namespace
 
-std::string lut_cpp(const analysis::AlbedoLut& lut, const LutDescription& d) {
-  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
-  std::string text = header_comment(lut, d);
+std::string lut_cpp(std::span<const LutChannel> channels, const LutDescription& d) {
+  const analysis::AlbedoLut& first = *channels.front().lut;
+  const Axis mu = axis_of(first.mu), p = axis_of(first.p);
+  std::string text = header_comment(channels, d);
   text += fmt::format(
       "#include <algorithm>\n#include <cmath>\n\nnamespace specula_lut {{\n\n"
       "inline constexpr int kMuCount = {}, kPCount = {};\n"
-      "inline constexpr float kMuFirst = {}f, kMuStep = {}f, kPFirst = {}f, kPStep = {}f;\n"
-      "/// E at (mu_j, p_i): kE[i * kMuCount + j].\n"
-      "inline constexpr float kE[kPCount * kMuCount] = {{\n    {}}};\n",
+      "inline constexpr float kMuFirst = {}f, kMuStep = {}f, kPFirst = {}f, kPStep = {}f;\n",
       mu.count, p.count, glsl::float_literal(mu.first), glsl::float_literal(mu.step), glsl::float_literal(p.first),
-      glsl::float_literal(p.step), float_list(lut.e, 8));
-  if (!lut.e_avg.empty()) text += fmt::format("inline constexpr float kEAvg[kPCount] = {{\n    {}}};\n", float_list(lut.e_avg, 8));
+      glsl::float_literal(p.step));
+  for (const LutChannel& c : channels) {
+    text += fmt::format("/// E at (mu_j, p_i): kE{0}[i * kMuCount + j].\n"
+                        "inline constexpr float kE{0}[kPCount * kMuCount] = {{\n    {1}}};\n",
+                        c.suffix, float_list(c.lut->e, 8));
+    if (!c.lut->e_avg.empty())
+      text += fmt::format("inline constexpr float kEAvg{}[kPCount] = {{\n    {}}};\n", c.suffix, float_list(c.lut->e_avg, 8));
+  }
   text +=
       "\n/// Cell index and weight of x on an axis, clamped to it.\n"
       "inline void locate(float x, float first, float step, int count, int& i, int& i1, float& w) {\n"
       "  const float t = std::clamp((x - first) / step, 0.0f, float(count - 1));\n"
-      "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}\n\n"
-      "/// E(mu, p), bilinear.\ninline float energy(float mu, float p) {\n  int i, i1, j, j1;\n  float wp, wm;\n"
-      "  locate(p, kPFirst, kPStep, kPCount, i, i1, wp);\n  locate(mu, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
-      "  const float e0 = kE[i * kMuCount + j] + wm * (kE[i * kMuCount + j1] - kE[i * kMuCount + j]);\n"
-      "  const float e1 = kE[i1 * kMuCount + j] + wm * (kE[i1 * kMuCount + j1] - kE[i1 * kMuCount + j]);\n"
-      "  return e0 + wp * (e1 - e0);\n}\n";
-  if (!lut.e_avg.empty())
-    text += "\n/// E_avg(p), linear.\ninline float energy_average(float p) {\n  int i, i1;\n  float w;\n"
-            "  locate(p, kPFirst, kPStep, kPCount, i, i1, w);\n  return kEAvg[i] + w * (kEAvg[i1] - kEAvg[i]);\n}\n";
+      "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}\n";
+  for (const LutChannel& c : channels) {
+    text += fmt::format(
+        "\n/// E{0}(mu, p), bilinear.\ninline float energy{0}(float mu, float p) {{\n  int i, i1, j, j1;\n  float wp, wm;\n"
+        "  locate(p, kPFirst, kPStep, kPCount, i, i1, wp);\n  locate(mu, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
+        "  const float e0 = kE{0}[i * kMuCount + j] + wm * (kE{0}[i * kMuCount + j1] - kE{0}[i * kMuCount + j]);\n"
+        "  const float e1 = kE{0}[i1 * kMuCount + j] + wm * (kE{0}[i1 * kMuCount + j1] - kE{0}[i1 * kMuCount + j]);\n"
+        "  return e0 + wp * (e1 - e0);\n}}\n",
+        c.suffix);
+    if (!c.lut->e_avg.empty())
+      text += fmt::format("\n/// E_avg{0}(p), linear.\ninline float energy_average{0}(float p) {{\n  int i, i1;\n  float w;\n"
+                          "  locate(p, kPFirst, kPStep, kPCount, i, i1, w);\n  return kEAvg{0}[i] + w * (kEAvg{0}[i1] - kEAvg{0}[i]);\n}}\n",
+                          c.suffix);
+  }
+  if (channels.size() > 1) {
+    text += "\n/// E(mu, p) at Schlick's F0: linear in F0.\ninline float energy(float mu, float p, float f0) {\n"
+            "  const float e0 = energy_f0_0(mu, p);\n  return e0 + f0 * (energy_f0_1(mu, p) - e0);\n}\n";
+    if (!first.e_avg.empty())
+      text += "\n/// E_avg(p) at Schlick's F0: linear in F0.\ninline float energy_average(float p, float f0) {\n"
+              "  const float e0 = energy_average_f0_0(p);\n  return e0 + f0 * (energy_average_f0_1(p) - e0);\n}\n";
+  }
   return text + "\n}  // namespace specula_lut\n";
 }
 
@@ -90,38 +115,54 @@ std::string hlsl_array(const std::string& name, std::size_t size, const std::str
 constexpr ShaderWords kGlsl{"GLSL 3.30, ES 3.00, WebGL 2", "vec3", "mix", glsl_array};
 constexpr ShaderWords kHlsl{"HLSL (Shader Model 4 and later)", "float3", "lerp", hlsl_array};
 
-std::string lut_shader(const analysis::AlbedoLut& lut, const LutDescription& d, const ShaderWords& w) {
-  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
-  std::string text = header_comment(lut, d);
-  text += fmt::format("// E at (mu_j, p_i): specula_lut_E[i * {} + j]. {}.\n", mu.count, w.language);
-  text += w.array("specula_lut_E", lut.e.size(), float_list(lut.e, 8));
-  if (!lut.e_avg.empty()) text += w.array("specula_lut_E_avg", p.count, float_list(lut.e_avg, 8));
+std::string lut_shader(std::span<const LutChannel> channels, const LutDescription& d, const ShaderWords& w) {
+  const analysis::AlbedoLut& first = *channels.front().lut;
+  const Axis mu = axis_of(first.mu), p = axis_of(first.p);
+  std::string text = header_comment(channels, d);
+  text += fmt::format("// E at (mu_j, p_i): specula_lut_E{}[i * {} + j]. {}.\n", channels.front().suffix, mu.count, w.language);
+  for (const LutChannel& c : channels) {
+    text += w.array("specula_lut_E" + c.suffix, c.lut->e.size(), float_list(c.lut->e, 8));
+    if (!c.lut->e_avg.empty()) text += w.array("specula_lut_E_avg" + c.suffix, p.count, float_list(c.lut->e_avg, 8));
+  }
   text += fmt::format(
       "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
       "{0} specula_lut_locate(float x, float first, float step, int count) {{\n"
       "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
-      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
-      "// E(mu, p), bilinear.\nfloat specula_lut_energy(float mu, float p) {{\n"
-      "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n  {0} b = specula_lut_locate(mu, {5}, {6}, {7});\n"
-      "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
-      "  float e0 = {1}(specula_lut_E[i * {7} + j], specula_lut_E[i * {7} + j1], b.z);\n"
-      "  float e1 = {1}(specula_lut_E[i1 * {7} + j], specula_lut_E[i1 * {7} + j1], b.z);\n"
-      "  return {1}(e0, e1, a.z);\n}}\n",
-      w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
-      glsl::float_literal(mu.step), mu.count);
-  if (!lut.e_avg.empty())
+      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n",
+      w.vec3);
+  for (const LutChannel& c : channels) {
     text += fmt::format(
-        "\n// E_avg(p), linear.\nfloat specula_lut_energy_average(float p) {{\n"
-        "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n"
-        "  return {1}(specula_lut_E_avg[int(a.x)], specula_lut_E_avg[int(a.y)], a.z);\n}}\n",
-        w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count);
+        "\n// E{8}(mu, p), bilinear.\nfloat specula_lut_energy{8}(float mu, float p) {{\n"
+        "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n  {0} b = specula_lut_locate(mu, {5}, {6}, {7});\n"
+        "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
+        "  float e0 = {1}(specula_lut_E{8}[i * {7} + j], specula_lut_E{8}[i * {7} + j1], b.z);\n"
+        "  float e1 = {1}(specula_lut_E{8}[i1 * {7} + j], specula_lut_E{8}[i1 * {7} + j1], b.z);\n"
+        "  return {1}(e0, e1, a.z);\n}}\n",
+        w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
+        glsl::float_literal(mu.step), mu.count, c.suffix);
+    if (!c.lut->e_avg.empty())
+      text += fmt::format(
+          "\n// E_avg{5}(p), linear.\nfloat specula_lut_energy_average{5}(float p) {{\n"
+          "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n"
+          "  return {1}(specula_lut_E_avg{5}[int(a.x)], specula_lut_E_avg{5}[int(a.y)], a.z);\n}}\n",
+          w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, c.suffix);
+  }
+  if (channels.size() > 1) {
+    text += fmt::format("\n// E(mu, p) at Schlick's F0: linear in F0.\nfloat specula_lut_energy(float mu, float p, float f0) {{\n"
+                        "  return {}(specula_lut_energy_f0_0(mu, p), specula_lut_energy_f0_1(mu, p), f0);\n}}\n",
+                        w.mix);
+    if (!first.e_avg.empty())
+      text += fmt::format("\n// E_avg(p) at Schlick's F0: linear in F0.\nfloat specula_lut_energy_average(float p, float f0) {{\n"
+                          "  return {}(specula_lut_energy_average_f0_0(p), specula_lut_energy_average_f0_1(p), f0);\n}}\n",
+                          w.mix);
+  }
   return text;
 }
 
 }  // namespace
 
-std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& d) { return lut_shader(lut, d, kGlsl); }
+std::string lut_glsl(std::span<const LutChannel> channels, const LutDescription& d) { return lut_shader(channels, d, kGlsl); }
 
-std::string lut_hlsl(const analysis::AlbedoLut& lut, const LutDescription& d) { return lut_shader(lut, d, kHlsl); }
+std::string lut_hlsl(std::span<const LutChannel> channels, const LutDescription& d) { return lut_shader(channels, d, kHlsl); }
 
 }  // namespace specula::cli

@@ -1,6 +1,7 @@
 #pragma once
 // `specula lut --format cpp|glsl|hlsl`: an albedo table as ready-to-paste C++, GLSL or HLSL arrays with their
 // bilinear lookup, stating how the table was made and its measured interpolation error.
+#include <span>
 #include <string>
 
 #include "specula/analysis/energy.h"
@@ -12,12 +13,19 @@ struct LutDescription {
   std::string command;        ///< the command line that makes it again, the version and the values' hash
   std::string model;          ///< the model with its fixed parameter values
   std::string param;          ///< the swept parameter's name, or "" for a table of one row
-  analysis::LutError error;   ///< measured at the cells' centres (lut_interpolation_error)
 };
 
-/// Both need grids of evenly spaced values (the lookup computes the index); the caller checks.
-std::string lut_cpp(const analysis::AlbedoLut& lut, const LutDescription& description);
-std::string lut_glsl(const analysis::AlbedoLut& lut, const LutDescription& description);
-std::string lut_hlsl(const analysis::AlbedoLut& lut, const LutDescription& description);
+/// One table of the file: the plain one (suffix ""), or E at F0 = 0 and at F0 = 1 of
+/// --schlick-split (suffixes "_f0_0" and "_f0_1"; the file then has the lookup at any F0 too).
+struct LutChannel {
+  std::string suffix;
+  const analysis::AlbedoLut* lut;
+  analysis::LutError error;  ///< measured at the cells' centres (lut_interpolation_error)
+};
+
+/// Every channel on one grid of evenly spaced values (the lookup computes the index); the caller checks.
+std::string lut_cpp(std::span<const LutChannel> channels, const LutDescription& description);
+std::string lut_glsl(std::span<const LutChannel> channels, const LutDescription& description);
+std::string lut_hlsl(std::span<const LutChannel> channels, const LutDescription& description);
 
 }  // namespace specula::cli

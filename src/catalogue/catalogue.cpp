@@ -74,22 +74,6 @@ CompensatedInfos& compensated_infos() {
   return c;
 }
 
-/// The Fresnel of a built-in microfacet model with its F0 (the parameter "f0"): Schlick's for GGX
-/// and Cook-Torrance, the exact dielectric's with η from F0 for Cook-Torrance 1982. None for the
-/// other models (F ≡ 1, or a user's formula, whose parameters say nothing of a Fresnel).
-std::optional<fresnel::Channel> fresnel_of(const Model& model) {
-  if (model.is_lobe() || model.compensated() || !model.info().is_builtin()) return std::nullopt;
-  const FullBrdf& brdf = model.brdf();
-  if (const auto* m = std::get_if<Ggx>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
-  if (const auto* m = std::get_if<CookTorrance>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
-  if (const auto* m = std::get_if<CookTorrance1982>(&brdf)) {
-    if (m->f0 >= 1) return fresnel::Channel{};
-    const double r = std::sqrt(m->f0);
-    return fresnel::Channel{.kind = fresnel::Kind::dielectric, .eta = (1 + r) / (1 - r)};
-  }
-  return std::nullopt;
-}
-
 /// M with F = 1 where M has a Fresnel (its f0 set to 1), else M itself: whose table M+ms uses.
 ParamValues white_params(const ModelInfo& base, ParamValues params, const std::optional<fresnel::Channel>& f) {
   if (f && base.find_param("f0")) params["f0"] = 1;
@@ -197,6 +181,19 @@ const ModelInfo* find_compensated(std::string_view id) noexcept {
 }
 
 }  // namespace
+
+std::optional<fresnel::Channel> fresnel_of(const Model& model) {
+  if (model.is_lobe() || model.compensated() || !model.info().is_builtin()) return std::nullopt;
+  const FullBrdf& brdf = model.brdf();
+  if (const auto* m = std::get_if<Ggx>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
+  if (const auto* m = std::get_if<CookTorrance>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
+  if (const auto* m = std::get_if<CookTorrance1982>(&brdf)) {
+    if (m->f0 >= 1) return fresnel::Channel{};
+    const double r = std::sqrt(m->f0);
+    return fresnel::Channel{.kind = fresnel::Kind::dielectric, .eta = (1 + r) / (1 - r)};
+  }
+  return std::nullopt;
+}
 
 const std::deque<ModelInfo>& models() { return catalogue().models; }
 

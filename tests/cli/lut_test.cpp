@@ -5,9 +5,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.h"
+#include "glsl_support.h"
 #include "text_support.h"
 
 namespace specula::testing {
@@ -141,6 +143,73 @@ TEST_F(Cli, LutHlslCompiles) {
   };
   EXPECT_TRUE(compiles("specula_lut_energy(0.5, 0.3)"));
   EXPECT_FALSE(compiles("specula_lut_energie(0.5, 0.3)"));
+}
+
+// --schlick-split: E at f0 = 0 and at f0 = 1; with Schlick's F, E is linear in F0, so mixing the
+// two gives the cubature's E at any F0 (checked at F0 = 0.3, a table of its own). The control: the
+// same mix for cook-torrance-1982, whose Fresnel is the exact dielectric's, is refused, and a mix
+// with the ends swapped misses.
+TEST_F(Cli, LutSchlickSplitMixesToEveryF0) {
+  const std::vector<std::string> grid{"--sweep", "alpha=0.2:0.6@3", "--mu", "0.25:1@4", "--round", "17", "-q"};
+  auto split_args = std::vector<std::string>{"lut", "--model", "ggx", "--schlick-split", "--average"};
+  split_args.insert(split_args.end(), grid.begin(), grid.end());
+  const auto split = lines_of(ok(split_args).out);
+  auto at_args = std::vector<std::string>{"lut", "--model", "ggx", "-p", "f0=0.3", "--average"};
+  at_args.insert(at_args.end(), grid.begin(), grid.end());
+  const auto at = lines_of(ok(at_args).out);
+  ASSERT_EQ(split.size(), 2u + 12);
+  ASSERT_EQ(at.size(), split.size());
+  EXPECT_EQ(split[1], "alpha,mu,E_f0_0,E_f0_1,E_avg_f0_0,E_avg_f0_1");
+  const auto cells = [](const std::string& line) {
+    std::vector<double> v;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) v.push_back(std::stod(cell));
+    return v;
+  };
+  double swapped_miss = 0;
+  for (std::size_t k = 2; k < split.size(); ++k) {
+    const auto s = cells(split[k]), e = cells(at[k]);
+    EXPECT_NEAR(s[2] + 0.3 * (s[3] - s[2]), e[2], 1e-12) << split[k];
+    EXPECT_NEAR(s[4] + 0.3 * (s[5] - s[4]), e[3], 1e-12) << split[k];
+    swapped_miss = std::max(swapped_miss, std::abs(s[3] + 0.3 * (s[2] - s[3]) - e[2]));
+  }
+  EXPECT_GT(swapped_miss, 0.1);  // the control
+  EXPECT_THAT(bad({"lut", "--model", "cook-torrance-1982", "--schlick-split"}).err, HasSubstr("no Schlick Fresnel"));
+  EXPECT_THAT(bad({"lut", "--model", "ggx", "--schlick-split", "-p", "f0=0.5"}).err, HasSubstr("give f0 neither"));
+  EXPECT_THAT(bad({"lut", "--model", "ggx", "--schlick-split", "--sweep", "alpha=0.1:1@200", "--mu", "0.1:1@200"}).err,
+              HasSubstr("2 tables of 200 x 200 cells is more than 65536"));
+}
+
+// Every format holds both tables: EXR in R and G, png16 one below the other, npy with a first
+// axis of 2, code with both lookups and the mix at any F0 (the GLSL compiles; misspelt, not).
+TEST_F(Cli, LutSchlickSplitInEveryFormat) {
+  const std::vector<std::string> table{"lut", "--model", "ggx", "--schlick-split", "--sweep", "alpha=0.2:0.6@3",
+                                       "--mu", "0.25:1@4", "-q"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = table;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  const fs::path png = work() / "e.png", exr = work() / "e.exr", npy = work() / "e.npy";
+  ok(with({"--format", "png16", "-o", png.string()}));
+  EXPECT_EQ(bytes_of(png).substr(16, 8), std::string("\0\0\0\4\0\0\0\6", 8));  // 4 x (2 x 3)
+  EXPECT_THAT(bytes_of(png), HasSubstr("rows 0-2: E at f0 = 0, rows 3-5: E at f0 = 1"));
+  ok(with({"--format", "exr", "-o", exr.string()}));
+  EXPECT_THAT(bytes_of(exr), HasSubstr("R: E at f0 = 0, G: E at f0 = 1"));
+  ok(with({"--format", "npy", "-o", npy.string()}));
+  EXPECT_THAT(bytes_of(npy), HasSubstr("'shape': (2, 3, 4), }"));
+  EXPECT_EQ(bytes_of(npy).size() % 64, (2 * 12 * 8) % 64);
+  const std::string cpp = ok(with({"--format", "cpp", "--average"})).out;
+  for (const char* part : {"kE_f0_0[kPCount * kMuCount]", "kE_f0_1[kPCount * kMuCount]", "inline float energy(float mu, float p, float f0)",
+                           "inline float energy_average(float p, float f0)", "E_f0_1: Bilinear interpolation error"})
+    EXPECT_THAT(cpp, HasSubstr(part));
+  const std::string glsl = ok(with({"--format", "glsl"})).out;
+  const auto compiles = [&](const std::string& call) {
+    const std::string shader = "#version 330\n" + glsl + "out vec4 colour;\nvoid main() { colour = vec4(" + call + "); }\n";
+    return validate_glsl(shader, "frag").ok;
+  };
+  EXPECT_TRUE(compiles("specula_lut_energy(0.5, 0.3, 0.04)"));
+  EXPECT_FALSE(compiles("specula_lut_energy(0.5, 0.3)"));  // the control: the split's lookup takes F0
 }
 
 TEST_F(Cli, LutBadInputIsExitTwoWithOneLine) {

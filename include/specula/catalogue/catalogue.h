@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "specula/brdf/fresnel.h"
 #include "specula/models/model.h"
 
 namespace specula {
@@ -36,5 +37,11 @@ std::shared_ptr<const ModelInfo> model_definition(std::string_view id, const Par
 /// in `form` if given (lobe models only; k stays the model's own). Throws InvalidField naming the
 /// field at fault: "model" (model_definition), "params" or "form" (make_model of a ModelInfo).
 Model make_model(std::string_view id, const ParamValues& params = {}, std::optional<Form> form = std::nullopt);
+
+/// The Fresnel of a built-in microfacet model with its F0 (the parameter "f0"): Schlick's for GGX
+/// and Cook-Torrance, the exact dielectric's with η from F0 for Cook-Torrance 1982. None for the
+/// other models (F ≡ 1, or a user's formula, whose parameters say nothing of a Fresnel) and for a
+/// compensated one.
+std::optional<fresnel::Channel> fresnel_of(const Model& model);
 
 }  // namespace specula
