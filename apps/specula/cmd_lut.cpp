@@ -12,6 +12,7 @@
 #include "specula/exceptions.h"
 #include "specula/expr/comment.h"
 #include "specula/io/sha256.h"
+#include "specula/io/values.h"
 #include "specula/render/image_io.h"
 
 namespace specula::cli {
@@ -36,6 +37,7 @@ struct LutOptions {
 struct Sweep {
   std::string name;  ///< empty: one row at the model's values
   std::vector<double> values;
+  double power = 1;  ///< the values are evenly spaced in p^(1/power) (io::spacing_power)
 };
 
 void require_increasing(std::string_view option, const std::vector<double>& v) {
@@ -43,12 +45,16 @@ void require_increasing(std::string_view option, const std::vector<double>& v) {
     if (!(v[i] > v[i - 1])) throw InvalidArgument(fmt::format("{}: values must increase ({} after {})", option, v[i], v[i - 1]));
 }
 
-void require_even_spacing(std::string_view option, const std::vector<double>& v, std::string_view format) {
-  if (v.size() < 3) return;
+/// The code formats' lookups compute the cell: the values evenly spaced in x^(1/power).
+void require_even_spacing(std::string_view option, const std::vector<double>& values, double power, std::string_view format) {
+  if (values.size() < 3) return;
+  std::vector<double> v;
+  for (const double x : values) v.push_back(std::pow(x, 1 / power));
   const double step = (v.back() - v.front()) / static_cast<double>(v.size() - 1);
   for (std::size_t i = 1; i + 1 < v.size(); ++i)
     if (std::abs(v[i] - (v.front() + step * static_cast<double>(i))) > 1e-9 * (std::abs(v.front()) + std::abs(v.back())))
-      throw InvalidArgument(fmt::format("{}: --format {} needs evenly spaced values (use a:b@count)", option, format));
+      throw InvalidArgument(
+          fmt::format("{}: --format {} needs evenly spaced values (use a:b@count or a:b@count:powK)", option, format));
 }
 
 Sweep sweep_of(const LutOptions& o) {
@@ -56,7 +62,8 @@ Sweep sweep_of(const LutOptions& o) {
   const auto eq = o.sweep.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=LIST", o.sweep));
-  Sweep s{o.sweep.substr(0, eq), option_values("--sweep", std::string_view(o.sweep).substr(eq + 1), kMaxLutAxisValues)};
+  const std::string_view list = std::string_view(o.sweep).substr(eq + 1);
+  Sweep s{o.sweep.substr(0, eq), option_values("--sweep", list, kMaxLutAxisValues), io::spacing_power(list)};
   if (o.model.param_values().contains(s.name))
     throw InvalidArgument(fmt::format("--sweep {} is also given as --param {}", s.name, s.name));
   require_increasing("--sweep", s.values);
@@ -260,11 +267,15 @@ void run(const LutOptions& o) {
     throw InvalidArgument(fmt::format("--average: {}{} values of {} is more than {} (each E_avg costs 100-400 cells)",
                                       tables > 1 ? "2 tables of " : "", sweep.values.size(), sweep.name, kMaxLutAverages));
   const bool code = o.format == "cpp" || o.format == "glsl" || o.format == "hlsl";
-  if (code) require_even_spacing("--mu", mu, o.format), require_even_spacing("--sweep", sweep.values, o.format);
+  const double mu_power = io::spacing_power(o.mu);
+  if (code)
+    require_even_spacing("--mu", mu, mu_power, o.format), require_even_spacing("--sweep", sweep.values, sweep.power, o.format);
   std::vector<Channel> channels = channels_of(o, sweep);
   for (const Channel& c : channels) c.at(sweep.values.front());  // a bad model or parameter fails before any work
-  for (Channel& c : channels)
+  for (Channel& c : channels) {
     c.lut = analysis::albedo_lut(c.at, sweep.values, mu, o.average, progress_of(o, "cells" + c.suffix));
+    c.lut.p_power = sweep.power, c.lut.mu_power = mu_power;  // how the code's lookup interpolates
+  }
   const Provenance provenance = provenance_of(o, channels);
   if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, channels, sweep, provenance);
   if (o.format == "png16") return write_png16_lut(o, channels, sweep, provenance);
@@ -280,7 +291,7 @@ void run(const LutOptions& o) {
     if (o.format == "json") return write_output(o.out, io::to_json(table, o.round));
     return write_output(o.out, "# " + provenance_line(provenance) + "\n" + io::to_csv(table, o.round));
   }
-  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name};
+  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name, mu_power, sweep.power};
   std::vector<LutChannel> code_channels;
   for (const Channel& c : channels)
     code_channels.push_back({c.suffix, &c.lut,
@@ -296,9 +307,10 @@ void add_lut_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("lut", "Energy-compensation tables: the albedo E(μ, p) and E_avg(p) of a model");
   o->model.add_to(*cmd);
   cmd->add_option("--sweep", o->sweep,
-                  "The table's parameter axis: NAME=LIST (e.g. alpha=0.05:1@32; at most 1024 values, increasing); "
+                  "The table's parameter axis: NAME=LIST (e.g. alpha=0.05:1@32, or alpha=0.01:1@32:pow2 uniform in "
+                  "sqrt(alpha); at most 1024 values, increasing); "
                   "without it, one row at the model's values")->type_name("NAME=LIST");
-  cmd->add_option("--mu", o->mu, "μ = cos θ_i values, in [1e-9, 1], increasing: list or range, at most 1024")
+  cmd->add_option("--mu", o->mu, "μ = cos θ_i values, in [1e-9, 1], increasing: list or range, at most 1024 (a:b@count:pow3 crowds them toward grazing)")
       ->capture_default_str();
   cmd->add_flag("--average", o->average,
                 "Also E_avg(p) = 2∫₀¹ E(μ) μ dμ (by quadrature in μ, not from the grid); at most 256 values of p");
@@ -327,7 +339,8 @@ void add_lut_command(CLI::App& app) {
       "  specula lut --model ggx --sweep alpha=0.05:1@16 --mu 0.05:1@16 --average --format glsl -o ggx_E.glsl\n"
       "  specula lut --model lambert -p rho=0.5 --mu 0.1:1@10 --average\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@64 --mu 0.015625:1@64 --format png16 -o ggx_E.png\n"
-      "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --schlick-split --format glsl -o dfg.glsl");
+      "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --schlick-split --format glsl -o dfg.glsl\n"
+      "  specula lut --model ggx --sweep alpha=0.01:1@32:pow2 --mu 0.001:1@32:pow3 --format cpp -o ggx_E.h   # spaced for accuracy");
   cmd->callback([o] { run(*o); });
 }
 

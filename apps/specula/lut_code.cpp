@@ -8,14 +8,30 @@
 namespace specula::cli {
 namespace {
 
-/// An evenly spaced axis as the lookup sees it: first value, step (1 for a single value), count.
+/// An evenly spaced axis as the lookup sees it, in u = x^(1/power): first u, step (1 for a single
+/// value), count, power.
 struct Axis {
   double first, step;
   std::size_t count;
+  double power = 1;
 };
 
-Axis axis_of(const std::vector<double>& v) {
-  return {v.front(), v.size() > 1 ? (v.back() - v.front()) / static_cast<double>(v.size() - 1) : 1.0, v.size()};
+Axis axis_of(const std::vector<double>& v, double power) {
+  const double first = std::pow(v.front(), 1 / power), last = std::pow(v.back(), 1 / power);
+  return {first, v.size() > 1 ? (last - first) / static_cast<double>(v.size() - 1) : 1.0, v.size(), power};
+}
+
+/// The lookup's coordinate of `x` on `axis`: x, or x^(1/power) (`pow` as the language spells it,
+/// `suffix` "f" for a C++ float literal).
+std::string coordinate(const std::string& x, const Axis& axis, const char* pow, const char* suffix) {
+  if (axis.power == 1) return x;
+  return fmt::format("{}({}, {}{})", pow, x, glsl::float_literal(1 / axis.power), suffix);
+}
+
+/// How the header states an axis: "mu = 0.25 + 0.25 j, j < 4" or "mu = (0.1 + 0.3 j)^2, j < 4".
+std::string axis_text(const std::string& name, const Axis& a, char index) {
+  if (a.power == 1) return fmt::format("{} = {:.9g} + {:.9g} {}, {} < {}", name, a.first, a.step, index, index, a.count);
+  return fmt::format("{} = ({:.9g} + {:.9g} {})^{:g}, {} < {}", name, a.first, a.step, index, a.power, index, a.count);
 }
 
 std::string float_list(const std::vector<double>& values, std::size_t per_line) {
@@ -27,14 +43,14 @@ std::string float_list(const std::vector<double>& values, std::size_t per_line) 
 
 std::string header_comment(std::span<const LutChannel> channels, const LutDescription& d) {
   const analysis::AlbedoLut& lut = *channels.front().lut;
-  const Axis mu = axis_of(lut.mu), p = axis_of(lut.p);
+  const Axis mu = axis_of(lut.mu, d.mu_power), p = axis_of(lut.p, d.p_power);
   std::string text = fmt::format(
       "// {}\n// Directional albedo E(mu, {}) of {} (mu = cos theta_i) by specula's deterministic cubature\n"
       "// (>= 8 digits); E_avg = 2 int_0^1 E(mu) mu dmu by adaptive quadrature in s = mu^(1/3).\n"
-      "// Grid: mu = {:.9g} + {:.9g} j, j < {}",
-      expr::comment_text(d.command), d.param.empty() ? "-" : d.param, expr::comment_text(d.model), mu.first, mu.step,
-      mu.count);
-  if (!d.param.empty()) text += fmt::format("; {} = {:.9g} + {:.9g} i, i < {}", d.param, p.first, p.step, p.count);
+      "// Grid: {}",
+      expr::comment_text(d.command), d.param.empty() ? "-" : d.param, expr::comment_text(d.model),
+      axis_text("mu", mu, 'j'));
+  if (!d.param.empty()) text += "; " + axis_text(d.param, p, 'i');
   if (channels.size() > 1)
     text += ".\n// Two tables, E at F0 = 0 (_f0_0) and at F0 = 1 (_f0_1): with Schlick's Fresnel E is linear in F0,\n"
             "// E(F0) = E_f0_0 + F0 (E_f0_1 - E_f0_0) exactly";
@@ -51,7 +67,8 @@ std::string header_comment(std::span<const LutChannel> channels, const LutDescri
 
 std::string lut_cpp(std::span<const LutChannel> channels, const LutDescription& d) {
   const analysis::AlbedoLut& first = *channels.front().lut;
-  const Axis mu = axis_of(first.mu), p = axis_of(first.p);
+  const Axis mu = axis_of(first.mu, d.mu_power), p = axis_of(first.p, d.p_power);
+  const std::string mu_at = coordinate("mu", mu, "std::pow", "f"), p_at = coordinate("p", p, "std::pow", "f");
   std::string text = header_comment(channels, d);
   text += fmt::format(
       "#include <algorithm>\n#include <cmath>\n\nnamespace specula_lut {{\n\n"
@@ -74,15 +91,15 @@ std::string lut_cpp(std::span<const LutChannel> channels, const LutDescription& 
   for (const LutChannel& c : channels) {
     text += fmt::format(
         "\n/// E{0}(mu, p), bilinear.\ninline float energy{0}(float mu, float p) {{\n  int i, i1, j, j1;\n  float wp, wm;\n"
-        "  locate(p, kPFirst, kPStep, kPCount, i, i1, wp);\n  locate(mu, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
+        "  locate({1}, kPFirst, kPStep, kPCount, i, i1, wp);\n  locate({2}, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
         "  const float e0 = kE{0}[i * kMuCount + j] + wm * (kE{0}[i * kMuCount + j1] - kE{0}[i * kMuCount + j]);\n"
         "  const float e1 = kE{0}[i1 * kMuCount + j] + wm * (kE{0}[i1 * kMuCount + j1] - kE{0}[i1 * kMuCount + j]);\n"
         "  return e0 + wp * (e1 - e0);\n}}\n",
-        c.suffix);
+        c.suffix, p_at, mu_at);
     if (!c.lut->e_avg.empty())
       text += fmt::format("\n/// E_avg{0}(p), linear.\ninline float energy_average{0}(float p) {{\n  int i, i1;\n  float w;\n"
-                          "  locate(p, kPFirst, kPStep, kPCount, i, i1, w);\n  return kEAvg{0}[i] + w * (kEAvg{0}[i1] - kEAvg{0}[i]);\n}}\n",
-                          c.suffix);
+                          "  locate({1}, kPFirst, kPStep, kPCount, i, i1, w);\n  return kEAvg{0}[i] + w * (kEAvg{0}[i1] - kEAvg{0}[i]);\n}}\n",
+                          c.suffix, p_at);
   }
   if (channels.size() > 1) {
     text += "\n/// E(mu, p) at Schlick's F0: linear in F0.\ninline float energy(float mu, float p, float f0) {\n"
@@ -117,7 +134,8 @@ constexpr ShaderWords kHlsl{"HLSL (Shader Model 4 and later)", "float3", "lerp",
 
 std::string lut_shader(std::span<const LutChannel> channels, const LutDescription& d, const ShaderWords& w) {
   const analysis::AlbedoLut& first = *channels.front().lut;
-  const Axis mu = axis_of(first.mu), p = axis_of(first.p);
+  const Axis mu = axis_of(first.mu, d.mu_power), p = axis_of(first.p, d.p_power);
+  const std::string mu_at = coordinate("mu", mu, "pow", ""), p_at = coordinate("p", p, "pow", "");
   std::string text = header_comment(channels, d);
   text += fmt::format("// E at (mu_j, p_i): specula_lut_E{}[i * {} + j]. {}.\n", channels.front().suffix, mu.count, w.language);
   for (const LutChannel& c : channels) {
@@ -133,19 +151,19 @@ std::string lut_shader(std::span<const LutChannel> channels, const LutDescriptio
   for (const LutChannel& c : channels) {
     text += fmt::format(
         "\n// E{8}(mu, p), bilinear.\nfloat specula_lut_energy{8}(float mu, float p) {{\n"
-        "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n  {0} b = specula_lut_locate(mu, {5}, {6}, {7});\n"
+        "  {0} a = specula_lut_locate({9}, {2}, {3}, {4});\n  {0} b = specula_lut_locate({10}, {5}, {6}, {7});\n"
         "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y);\n"
         "  float e0 = {1}(specula_lut_E{8}[i * {7} + j], specula_lut_E{8}[i * {7} + j1], b.z);\n"
         "  float e1 = {1}(specula_lut_E{8}[i1 * {7} + j], specula_lut_E{8}[i1 * {7} + j1], b.z);\n"
         "  return {1}(e0, e1, a.z);\n}}\n",
         w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, glsl::float_literal(mu.first),
-        glsl::float_literal(mu.step), mu.count, c.suffix);
+        glsl::float_literal(mu.step), mu.count, c.suffix, p_at, mu_at);
     if (!c.lut->e_avg.empty())
       text += fmt::format(
           "\n// E_avg{5}(p), linear.\nfloat specula_lut_energy_average{5}(float p) {{\n"
-          "  {0} a = specula_lut_locate(p, {2}, {3}, {4});\n"
+          "  {0} a = specula_lut_locate({6}, {2}, {3}, {4});\n"
           "  return {1}(specula_lut_E_avg{5}[int(a.x)], specula_lut_E_avg{5}[int(a.y)], a.z);\n}}\n",
-          w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, c.suffix);
+          w.vec3, w.mix, glsl::float_literal(p.first), glsl::float_literal(p.step), p.count, c.suffix, p_at);
   }
   if (channels.size() > 1) {
     text += fmt::format("\n// E(mu, p) at Schlick's F0: linear in F0.\nfloat specula_lut_energy(float mu, float p, float f0) {{\n"

@@ -13,6 +13,9 @@ struct LutDescription {
   std::string command;        ///< the command line that makes it again, the version and the values' hash
   std::string model;          ///< the model with its fixed parameter values
   std::string param;          ///< the swept parameter's name, or "" for a table of one row
+  /// Each axis is evenly spaced in x^(1/power) (io::spacing_power: 1 linear, 2 in √x, …); the
+  /// lookup maps x so before it locates the cell.
+  double mu_power = 1, p_power = 1;
 };
 
 /// One table of the file: the plain one (suffix ""), or E at F0 = 0 and at F0 = 1 of

@@ -139,18 +139,25 @@ TableCache& table_cache() {
 }
 
 /// Index i and weight w with x = (1 − w) v[i] + w v[i + 1], clamped to the grid.
-std::pair<std::size_t, double> bracket(std::span<const double> v, double x) noexcept {
+/// x^(1/power): the coordinate a lookup interpolates in.
+double spaced(double x, double power) noexcept { return power == 1 ? x : std::pow(x, 1 / power); }
+
+/// The cell of x on the axis v (increasing) and x's weight in it, both in coordinates x^(1/power).
+std::pair<std::size_t, double> bracket(std::span<const double> v, double x, double power) noexcept {
   if (v.size() < 2) return {0, 0.0};
   const auto upper = std::upper_bound(v.begin(), v.end(), x);
   const auto i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(upper - v.begin() - 1, 0,
                                                                      static_cast<std::ptrdiff_t>(v.size()) - 2));
-  return {i, std::clamp((x - v[i]) / (v[i + 1] - v[i]), 0.0, 1.0)};
+  const double a = spaced(v[i], power), b = spaced(v[i + 1], power);
+  return {i, std::clamp((spaced(x, power) - a) / (b - a), 0.0, 1.0)};
 }
 
-std::vector<double> midpoints_or_values(std::span<const double> v) {
+/// The cells' midpoints in coordinates x^(1/power), or the one value.
+std::vector<double> midpoints_or_values(std::span<const double> v, double power) {
   if (v.size() < 2) return {v.begin(), v.end()};
   std::vector<double> mid;
-  for (std::size_t i = 0; i + 1 < v.size(); ++i) mid.push_back((v[i] + v[i + 1]) / 2);
+  for (std::size_t i = 0; i + 1 < v.size(); ++i)
+    mid.push_back(std::pow((spaced(v[i], power) + spaced(v[i + 1], power)) / 2, power));
   return mid;
 }
 
@@ -252,8 +259,8 @@ void clear_energy_tables() {
 }
 
 double AlbedoLut::bilinear(double mu_value, double p_value) const noexcept {
-  const auto [i, wp] = bracket(p, p_value);
-  const auto [j, wm] = bracket(mu, mu_value);
+  const auto [i, wp] = bracket(p, p_value, p_power);
+  const auto [j, wm] = bracket(mu, mu_value, mu_power);
   auto row = [&](std::size_t r) {
     return mu.size() < 2 ? at(r, 0) : (1 - wm) * at(r, j) + wm * at(r, j + 1);
   };
@@ -261,7 +268,7 @@ double AlbedoLut::bilinear(double mu_value, double p_value) const noexcept {
 }
 
 double AlbedoLut::linear_e_avg(double p_value) const noexcept {
-  const auto [i, w] = bracket(p, p_value);
+  const auto [i, w] = bracket(p, p_value, p_power);
   return p.size() < 2 ? e_avg[0] : (1 - w) * e_avg[i] + w * e_avg[i + 1];
 }
 
@@ -270,7 +277,7 @@ AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::sp
   for (const double m : mu)
     if (!(m >= kMinMu && m <= 1)) throw InvalidArgument(fmt::format("mu = {} is outside [{:g}, 1]", m, kMinMu));
   const std::vector<Model> models = models_at(model_at, p);
-  AlbedoLut lut{{p.begin(), p.end()}, {mu.begin(), mu.end()}, std::vector<double>(p.size() * mu.size()), {}};
+  AlbedoLut lut{{p.begin(), p.end()}, {mu.begin(), mu.end()}, std::vector<double>(p.size() * mu.size()), {}, 1, 1};
   // The E_avg first (each costs ~100 cells), then the cells: one parallel loop over both.
   const std::size_t averages = average ? p.size() : 0;
   lut.e_avg.resize(averages);
@@ -286,7 +293,7 @@ AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::sp
 }
 
 LutError lut_interpolation_error(const AlbedoLut& lut, const ModelAt& model_at, const Progress& progress) {
-  const std::vector<double> p_mid = midpoints_or_values(lut.p), mu_mid = midpoints_or_values(lut.mu);
+  const std::vector<double> p_mid = midpoints_or_values(lut.p, lut.p_power), mu_mid = midpoints_or_values(lut.mu, lut.mu_power);
   const AlbedoLut exact = albedo_lut(model_at, p_mid, mu_mid, !lut.e_avg.empty() && lut.p.size() > 1, progress);
   LutError error;
   for (std::size_t i = 0; i < p_mid.size(); ++i) {

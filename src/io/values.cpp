@@ -53,21 +53,37 @@ void append_stepped(std::string_view item, double a, double b, double step, std:
     out.push_back(std::abs(b - (a + step * i)) <= 1e-9 * step ? b : std::min(b, a + step * i));
 }
 
+// The same evenly spaced in x^(1/k) (a, b ≥ 0, k > 0).
+double power_at(double a, double b, double k, double f) {
+  return std::clamp(std::pow(linear_at(std::pow(a, 1 / k), std::pow(b, 1 / k), f), k), std::min(a, b), std::max(a, b));
+}
+
+// K of a spacing "powK", or 0 when `spacing` is not one.
+double power_of(std::string_view spacing) {
+  if (!spacing.starts_with("pow")) return 0;
+  double k = 0;
+  const auto [ptr, ec] = std::from_chars(spacing.data() + 3, spacing.data() + spacing.size(), k);
+  return ec == std::errc() && ptr == spacing.data() + spacing.size() && std::isfinite(k) && k > 0 && spacing.size() > 3 ? k : 0;
+}
+
 void append_counted(std::string_view item, double a, double b, std::string_view count_text,
                     std::size_t max_values, std::vector<double>& out) {
   const auto at = split(count_text, ':');
-  if (at.size() > 2 || (at.size() == 2 && at[1] != "log"))
-    malformed(item, "expected a:b@count or a:b@count:log");
+  const bool log = at.size() == 2 && at[1] == "log";
+  const double power = at.size() == 2 ? power_of(at[1]) : 1;
+  if (at.size() > 2 || (at.size() == 2 && !log && power == 0))
+    malformed(item, "expected a:b@count, a:b@count:log or a:b@count:powK (K > 0)");
   const double count = parse_number(at[0], fmt::format("the count of '{}'", item));
   if (count < 1 || count != std::floor(count)) malformed(item, "the count must be a whole number ≥ 1");
   check_count(item, count, out.size(), max_values);
-  const bool log = at.size() == 2;
   if (log && !(a > 0 && b > 0)) malformed(item, "log spacing needs a > 0 and b > 0");
+  if (power != 1 && !(a >= 0 && b >= 0)) malformed(item, "pow spacing needs a ≥ 0 and b ≥ 0");
   const auto n = static_cast<std::size_t>(count);
   for (std::size_t i = 0; i < n; ++i) {
     const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
     if (i + 1 == n && n > 1) out.push_back(b);  // the end exactly, free of round-off
-    else out.push_back(log ? log_at(a, b, f) : linear_at(a, b, f));
+    else if (log) out.push_back(log_at(a, b, f));
+    else out.push_back(power != 1 ? power_at(a, b, power, f) : linear_at(a, b, f));
   }
 }
 
@@ -121,6 +137,16 @@ std::vector<double> parse_values(std::string_view spec, std::size_t max_values) 
     if (values.size() > max_values) malformed(spec, fmt::format("more than {} values", max_values));
   }
   return values;
+}
+
+double spacing_power(std::string_view spec) noexcept {
+  if (spec.find(',') != std::string_view::npos) return 1;
+  const auto at = spec.find('@');
+  if (at == std::string_view::npos) return 1;
+  const auto colon = spec.find(':', at);
+  if (colon == std::string_view::npos) return 1;
+  const double k = power_of(spec.substr(colon + 1));
+  return k > 0 ? k : 1;
 }
 
 std::vector<double> paper50() {

@@ -130,6 +130,24 @@ TEST(ParseValues, CountedLogRange) {
   for (std::size_t i = 1; i < w.size(); ++i) EXPECT_NEAR(w[i] / w[i - 1], ratio, 1e-12 * ratio) << i;
 }
 
+// a:b@count:powK: evenly spaced in x^(1/K), the ends exact; √ spacing at K = 2, the K of one
+// range only (a list or a linear range has 1).
+TEST(ParseValues, CountedPowerRange) {
+  const auto v = parse_values("0:1@3:pow2");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v.front(), 0.0);
+  EXPECT_NEAR(v[1], 0.25, 1e-15);
+  EXPECT_EQ(v.back(), 1.0);
+  const auto w = parse_values("0.001:1@9:pow3");
+  for (std::size_t i = 2; i < w.size(); ++i)
+    EXPECT_NEAR(std::cbrt(w[i]) - std::cbrt(w[i - 1]), std::cbrt(w[1]) - std::cbrt(w[0]), 1e-14) << i;
+  EXPECT_LT(w[1] - w[0], w[8] - w[7]);  // crowded toward the start
+  EXPECT_EQ(parse_values("0.05:1@4:pow1"), parse_values("0.05:1@4"));
+  EXPECT_EQ(spacing_power("0:1@32:pow4"), 4.0);
+  EXPECT_EQ(spacing_power("0.5:1@3:pow2.5"), 2.5);
+  for (const char* spec : {"0:1@32", "1:100@3:log", "0:1@3:pow2,2", "0.1,0.2", "paper50"}) EXPECT_EQ(spacing_power(spec), 1.0) << spec;
+}
+
 // ---- paper50 --------------------------------------------------------------------------------
 
 TEST(ParseValues, Paper50) {
@@ -190,6 +208,11 @@ TEST(ParseValues, EveryMalformedKindThrowsNamingTheItem) {
       {"-1:10@5:log", "-1:10@5:log"},
       {"1:2@5:lin", "1:2@5:lin"},
       {"1:2@5:log:log", "1:2@5:log:log"},
+      {"1:2@5:pow", "1:2@5:pow"},
+      {"1:2@5:pow0", "1:2@5:pow0"},
+      {"1:2@5:pow-2", "1:2@5:pow-2"},
+      {"1:2@5:pownan", "1:2@5:pownan"},
+      {"-1:2@5:pow2", "-1:2@5:pow2"},
       {"1:2:0.5@3", "1:2:0.5@3"},
       {"1:2:3:4", "1:2:3:4"},
       {"1@3", "1@3"},

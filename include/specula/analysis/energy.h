@@ -60,6 +60,9 @@ struct AlbedoLut {
   std::vector<double> p, mu;
   std::vector<double> e;
   std::vector<double> e_avg;  ///< one per p, or empty
+  /// How the lookups interpolate: linearly in p^(1/p_power) and μ^(1/mu_power) (1: in p and μ;
+  /// 2: in √p, for an axis spaced so, io::spacing_power).
+  double p_power = 1, mu_power = 1;
 
   double at(std::size_t i, std::size_t j) const noexcept { return e[i * mu.size() + j]; }
   /// Bilinear interpolation of E at (μ, p) inside the grid (linear along an axis of one value).
@@ -75,7 +78,8 @@ AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::sp
 
 /// The table's interpolation error against the cubature: max |bilinear − E| at the centres of the
 /// cells (at the midpoints of the one axis that has more than one value), and max |linear − E_avg|
-/// at the midpoints of p when the table has E_avg (else 0).
+/// at the midpoints of p when the table has E_avg (else 0); centres and midpoints in the
+/// coordinates the lookup interpolates in (p_power, mu_power).
 struct LutError {
   double e = 0;
   double e_avg = 0;
