@@ -24,7 +24,7 @@ constexpr std::size_t kProgressFrom = 256;  // cells: smaller tables finish befo
 
 struct LutOptions {
   ModelOptions model;
-  std::string sweep;
+  std::vector<std::string> sweeps;  ///< at most two: the rows' parameter p, then the slices' q
   std::string mu = "0.03125:1@32";
   bool average = false;
   bool schlick_split = false;
@@ -57,40 +57,54 @@ void require_even_spacing(std::string_view option, const std::vector<double>& va
           fmt::format("{}: --format {} needs evenly spaced values (use a:b@count or a:b@count:powK)", option, format));
 }
 
-Sweep sweep_of(const LutOptions& o) {
-  if (o.sweep.empty()) return {"", {0.0}};
-  const auto eq = o.sweep.find('=');
+/// The `index`th --sweep, or one row at the model's values where there is none.
+Sweep sweep_of(const LutOptions& o, std::size_t index) {
+  if (o.sweeps.size() <= index) return {"", {0.0}};
+  const std::string& text = o.sweeps[index];
+  const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=LIST", o.sweep));
-  const std::string_view list = std::string_view(o.sweep).substr(eq + 1);
-  Sweep s{o.sweep.substr(0, eq), option_values("--sweep", list, kMaxLutAxisValues), io::spacing_power(list)};
+    throw InvalidArgument(fmt::format("malformed --sweep '{}': expected NAME=LIST", text));
+  const std::string_view list = std::string_view(text).substr(eq + 1);
+  Sweep s{text.substr(0, eq), option_values("--sweep", list, kMaxLutAxisValues), io::spacing_power(list)};
   if (o.model.param_values().contains(s.name))
     throw InvalidArgument(fmt::format("--sweep {} is also given as --param {}", s.name, s.name));
   require_increasing("--sweep", s.values);
   return s;
 }
 
-/// The model at the sweep's value p, with its f0 set where `f0` is given (--schlick-split).
-analysis::ModelAt model_at(const LutOptions& o, const Sweep& sweep, std::optional<double> f0 = std::nullopt) {
-  return [spec = o.model.spec(), name = sweep.name, f0](double p) {
+/// The model at the sweep's value p, with the parameters in `fixed` set too (--schlick-split's f0,
+/// a slice's q).
+analysis::ModelAt model_at(const LutOptions& o, const Sweep& sweep, const ParamValues& fixed = {}) {
+  return [spec = o.model.spec(), name = sweep.name, fixed](double p) {
     queries::ModelSpec at = spec;
     if (!name.empty()) at.params[name] = p;
-    if (f0) at.params["f0"] = *f0;
+    for (const auto& [param, value] : fixed) at.params[param] = value;
     return queries::make(at, queries::Spelling::option);
   };
 }
 
-/// One table of the output: the plain E, or E at one end of F0 with --schlick-split.
+/// One table of the output: the plain E, E at one end of F0 with --schlick-split, or one slice of
+/// a second --sweep.
 struct Channel {
   std::string suffix;  ///< "", "_f0_0" or "_f0_1"
   analysis::ModelAt at;
   analysis::AlbedoLut lut;
 };
 
+/// A second --sweep: one table per value q of its parameter, all on the first's grid.
+std::vector<Channel> slices_of(const LutOptions& o, const Sweep& sweep, const Sweep& slices) {
+  if (o.schlick_split) throw InvalidArgument("--schlick-split takes one --sweep (its two tables are the F0 axis)");
+  if (slices.name == sweep.name) throw InvalidArgument(fmt::format("--sweep {} is given twice", sweep.name));
+  std::vector<Channel> channels;
+  for (const double q : slices.values) channels.push_back({"", model_at(o, sweep, {{slices.name, q}}), {}});
+  return channels;
+}
+
 /// --schlick-split (Filament's DFG split, Karis 2013): where the model's Fresnel is Schlick's,
 /// F = F0 + (F90 − F0)(1 − c)^p is linear in F0, and so is E: E(F0) = E(0) + F0 (E(1) − E(0))
 /// exactly. Refused for any other model and where f0 is given or swept.
-std::vector<Channel> channels_of(const LutOptions& o, const Sweep& sweep) {
+std::vector<Channel> channels_of(const LutOptions& o, const Sweep& sweep, const Sweep& slices) {
+  if (!slices.name.empty()) return slices_of(o, sweep, slices);
   if (!o.schlick_split) return {{"", model_at(o, sweep), {}}};
   if (sweep.name == "f0" || o.model.param_values().contains("f0"))
     throw InvalidArgument("--schlick-split tabulates E at f0 = 0 and f0 = 1 itself: give f0 neither to --sweep nor to --param");
@@ -99,7 +113,7 @@ std::vector<Channel> channels_of(const LutOptions& o, const Sweep& sweep) {
     throw InvalidArgument(fmt::format("--schlick-split: {} has no Schlick Fresnel in f0 (E is linear in F0 only for "
                                       "Schlick's: ggx, cook-torrance)",
                                       o.model.id));
-  return {{"_f0_0", model_at(o, sweep, 0.0), {}}, {"_f0_1", model_at(o, sweep, 1.0), {}}};
+  return {{"_f0_0", model_at(o, sweep, {{"f0", 0.0}}), {}}, {"_f0_1", model_at(o, sweep, {{"f0", 1.0}}), {}}};
 }
 
 /// Progress lines on stderr at every tenth of a long table (off with --quiet).
@@ -112,7 +126,29 @@ analysis::Progress progress_of(const LutOptions& o, std::string_view what) {
   };
 }
 
-io::Table lut_table(const std::vector<Channel>& channels, const Sweep& sweep) {
+/// A second --sweep's table: columns Q, P, mu, E (and E_avg), one row per cell, q-major.
+io::Table sliced_table(const std::vector<Channel>& slices, const Sweep& sweep, const Sweep& q) {
+  const analysis::AlbedoLut& lut = slices.front().lut;
+  io::Table t;
+  t.columns.push_back(q.name);
+  if (!sweep.name.empty()) t.columns.push_back(sweep.name);
+  t.columns.insert(t.columns.end(), {"mu", "E"});
+  if (!lut.e_avg.empty()) t.columns.push_back("E_avg");
+  t.key_columns = sweep.name.empty() ? 2 : 3;
+  for (std::size_t k = 0; k < slices.size(); ++k)
+    for (std::size_t i = 0; i < lut.p.size(); ++i)
+      for (std::size_t j = 0; j < lut.mu.size(); ++j) {
+        std::vector<double> row{q.values[k]};
+        if (!sweep.name.empty()) row.push_back(lut.p[i]);
+        row.insert(row.end(), {lut.mu[j], slices[k].lut.at(i, j)});
+        if (!lut.e_avg.empty()) row.push_back(slices[k].lut.e_avg[i]);
+        t.rows.push_back(std::move(row));
+      }
+  return t;
+}
+
+io::Table lut_table(const std::vector<Channel>& channels, const Sweep& sweep, const Sweep& slices) {
+  if (!slices.name.empty()) return sliced_table(channels, sweep, slices);
   const analysis::AlbedoLut& lut = channels.front().lut;
   io::Table t;
   if (!sweep.name.empty()) t.columns.push_back(sweep.name);
@@ -155,40 +191,56 @@ std::string provenance_line(const Provenance& p) {
 }
 
 render::Metadata image_metadata(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
-                                const Provenance& provenance, const std::string& layout) {
+                                const Sweep& slices, const Provenance& provenance, const std::string& layout) {
   const analysis::AlbedoLut& lut = channels.front().lut;
   render::Metadata meta{{"Software", "specula " + provenance.version}, {"command", provenance.command},
                         {"sha256", provenance.sha256}, {"model", o.model.id}, {"layout", layout}, {"mu", joined(lut.mu)}};
   for (const auto& p : o.model.params) meta.emplace_back("param", p);
   if (!sweep.name.empty()) meta.emplace_back(sweep.name, joined(lut.p));
-  for (const Channel& c : channels)
-    if (!c.lut.e_avg.empty()) meta.emplace_back("E_avg" + c.suffix, joined(c.lut.e_avg));
+  if (!slices.name.empty()) meta.emplace_back(slices.name, joined(slices.values));
+  for (std::size_t k = 0; k < channels.size(); ++k)
+    if (!channels[k].lut.e_avg.empty())
+      meta.emplace_back(slices.name.empty() ? "E_avg" + channels[k].suffix
+                                            : fmt::format("E_avg at {} = {}", slices.name, io::format_number(slices.values[k])),
+                        joined(channels[k].lut.e_avg));
   return meta;
 }
 
 std::string sweep_axis(const Sweep& sweep) { return sweep.name.empty() ? std::string("-") : sweep.name; }
 
-/// The plain table in every channel; --schlick-split's E at f0 = 0 in R and at f0 = 1 in G.
-void write_exr_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+/// A second --sweep's tables one below the other in an image: the layout, in words.
+std::string slices_layout(const Sweep& sweep, const Sweep& slices, std::size_t rows) {
+  return fmt::format("x: mu, y: {} (top row first) in blocks of {} rows, one per {} (first value on top): row "
+                     "k * {} + i is {}_k, {}_i",
+                     sweep_axis(sweep), rows, slices.name, rows, slices.name, sweep_axis(sweep));
+}
+
+/// The plain table in every channel; --schlick-split's E at f0 = 0 in R and at f0 = 1 in G; a
+/// second --sweep's tables one below the other (slices_layout).
+void write_exr_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep, const Sweep& slices,
                    const Provenance& provenance) {
   const analysis::AlbedoLut& lut = channels.front().lut;
-  render::Image image(static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size()));
-  for (std::size_t i = 0; i < lut.p.size(); ++i)
-    for (std::size_t j = 0; j < lut.mu.size(); ++j) {
-      const double e = lut.at(i, j);
-      image.set(static_cast<int>(j), static_cast<int>(i),
-                channels.size() > 1 ? render::Rgb{e, channels[1].lut.at(i, j), 0} : render::Rgb{e, e, e});
-    }
-  std::string layout = "x: mu, y: " + sweep_axis(sweep) + " (top row first)";
-  if (channels.size() > 1) layout += "; R: E at f0 = 0, G: E at f0 = 1, E(f0) = R + f0 (G - R)";
+  const std::size_t blocks = slices.name.empty() ? 1 : channels.size(), rows = lut.p.size();
+  render::Image image(static_cast<int>(lut.mu.size()), static_cast<int>(rows * blocks));
+  for (std::size_t k = 0; k < blocks; ++k)
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t j = 0; j < lut.mu.size(); ++j) {
+        const double e = channels[k].lut.at(i, j);
+        const bool split = slices.name.empty() && channels.size() > 1;
+        image.set(static_cast<int>(j), static_cast<int>(k * rows + i),
+                  split ? render::Rgb{e, channels[1].lut.at(i, j), 0} : render::Rgb{e, e, e});
+      }
+  std::string layout = slices.name.empty() ? "x: mu, y: " + sweep_axis(sweep) + " (top row first)"
+                                           : slices_layout(sweep, slices, rows);
+  if (slices.name.empty() && channels.size() > 1) layout += "; R: E at f0 = 0, G: E at f0 = 1, E(f0) = R + f0 (G - R)";
   render::write_exr(o.out, image, o.format == "exr-half" ? render::ExrPixel::half : render::ExrPixel::float32,
-                    image_metadata(o, channels, sweep, provenance, layout));
+                    image_metadata(o, channels, sweep, slices, provenance, layout));
 }
 
 /// 16-bit codes round(65535 E / scale), scale = 1, or max E when a model reflects more than it
 /// receives; the scale is in the metadata and on stderr. --schlick-split's two tables one below
 /// the other (a gray image has one channel): E at f0 = 0 on top.
-void write_png16_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+void write_png16_lut(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep, const Sweep& slices,
                      const Provenance& provenance) {
   double scale = 1;
   for (const Channel& c : channels) scale = std::max(scale, *std::max_element(c.lut.e.begin(), c.lut.e.end()));
@@ -197,11 +249,12 @@ void write_png16_lut(const LutOptions& o, const std::vector<Channel>& channels, 
     for (const double e : c.lut.e)
       codes.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(e / scale, 0.0, 1.0) * 65535)));
   const analysis::AlbedoLut& lut = channels.front().lut;
-  std::string layout = "x: mu, y: " + sweep_axis(sweep) + " (top row first)";
-  if (channels.size() > 1)
+  std::string layout = slices.name.empty() ? "x: mu, y: " + sweep_axis(sweep) + " (top row first)"
+                                           : slices_layout(sweep, slices, lut.p.size());
+  if (slices.name.empty() && channels.size() > 1)
     layout += fmt::format("; rows 0-{0}: E at f0 = 0, rows {1}-{2}: E at f0 = 1, E(f0) = E0 + f0 (E1 - E0)",
                           lut.p.size() - 1, lut.p.size(), 2 * lut.p.size() - 1);
-  render::Metadata meta = image_metadata(o, channels, sweep, provenance, layout);
+  render::Metadata meta = image_metadata(o, channels, sweep, slices, provenance, layout);
   meta.emplace_back("scale", fmt::format("E = code / 65535 * {}", io::format_number(scale)));
   render::write_png16(o.out, static_cast<int>(lut.mu.size()), static_cast<int>(lut.p.size() * channels.size()), codes, meta);
   if (!o.quiet) fmt::print(stderr, "lut: 16-bit codes, E = code / 65535 * {}\n", io::format_number(scale));
@@ -216,19 +269,20 @@ std::string describe_model(const LutOptions& o) {
 std::string command_line(const LutOptions& o) {
   std::string text = fmt::format("specula lut --model {}", o.model.id);
   for (const auto& p : o.model.params) text += " -p " + p;
-  if (!o.sweep.empty()) text += " --sweep " + o.sweep;
+  for (const std::string& sweep : o.sweeps) text += " --sweep " + sweep;
   text += " --mu " + o.mu + (o.average ? " --average" : "") + (o.schlick_split ? " --schlick-split" : "") +
           " --format " + o.format;
   return text;
 }
 
 /// NumPy's .npy (format 1.0): E as little-endian float64 of shape (p, mu), or (mu) for one row;
-/// --schlick-split's two tables as a first axis of 2 (E at f0 = 0, then at f0 = 1). Its header
-/// takes no other keys, so the provenance goes to stderr (unless --quiet).
-std::string npy_of(const std::vector<Channel>& channels, const Sweep& sweep) {
+/// --schlick-split's two tables as a first axis of 2 (E at f0 = 0, then at f0 = 1), a second
+/// --sweep's as a first axis of its values: (q, p, mu). Its header takes no other keys, so the
+/// provenance goes to stderr (unless --quiet).
+std::string npy_of(const std::vector<Channel>& channels, const Sweep& sweep, const Sweep& slices) {
   const analysis::AlbedoLut& lut = channels.front().lut;
   std::string shape = sweep.name.empty() ? fmt::format("{},", lut.mu.size()) : fmt::format("{}, {}", lut.p.size(), lut.mu.size());
-  shape = channels.size() > 1 ? fmt::format("({}, {})", channels.size(), shape) : "(" + shape + ")";
+  shape = channels.size() > 1 || !slices.name.empty() ? fmt::format("({}, {})", channels.size(), shape) : "(" + shape + ")";
   std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': {}, }}", shape);
   header.append(63 - (10 + header.size()) % 64, ' ');  // the data starts on a multiple of 64 bytes
   header += '\n';
@@ -250,54 +304,82 @@ Provenance provenance_of(const LutOptions& o, const std::vector<Channel>& channe
   return {command_line(o), std::string(build_version()), io::sha256_of_doubles(values)};
 }
 
+/// The code formats' lookup error: each table's at its cells' centres, or a second --sweep's
+/// trilinear lookup's at the centres of its cells in (q, p, μ).
+std::vector<LutChannel> code_channels(const LutOptions& o, const std::vector<Channel>& channels, const Sweep& sweep,
+                                      const Sweep& slices) {
+  std::vector<LutChannel> code;
+  if (slices.name.empty()) {
+    for (const Channel& c : channels)
+      code.push_back({c.suffix, &c.lut, analysis::lut_interpolation_error(c.lut, c.at, progress_of(o, "interpolation error" + c.suffix))});
+    return code;
+  }
+  std::vector<analysis::AlbedoLut> tables;
+  for (const Channel& c : channels) tables.push_back(c.lut);
+  const analysis::LutError error = analysis::lut_interpolation_error(
+      tables, slices.values, slices.power,
+      [&o, &sweep, &slices](double q) { return model_at(o, sweep, {{slices.name, q}}); },
+      progress_of(o, "interpolation error"));
+  for (const Channel& c : channels) code.push_back({c.suffix, &c.lut, error});
+  return code;
+}
+
 void run(const LutOptions& o) {
   if ((o.format == "exr" || o.format == "exr-half" || o.format == "png16" || o.format == "npy") && o.out.empty())
     throw InvalidArgument(fmt::format("--format {} needs --out FILE", o.format));
-  const Sweep sweep = sweep_of(o);
+  if (o.sweeps.size() > 2) throw InvalidArgument("--sweep: at most two axes (p, then q)");
+  const Sweep sweep = sweep_of(o, 0), slices = sweep_of(o, 1);
   const std::vector<double> mu = option_values("--mu", o.mu, kMaxLutAxisValues);
   require_increasing("--mu", mu);
   for (const double m : mu)
     if (!(m >= analysis::kMinMu && m <= 1))
       throw InvalidArgument(fmt::format("--mu: {} is outside [{:g}, 1]", m, analysis::kMinMu));
-  const std::size_t tables = o.schlick_split ? 2 : 1;  // the cells' cost counts each table
+  // The cells' cost counts each table: --schlick-split's two, a second --sweep's one per value.
+  const std::size_t tables = o.schlick_split ? 2 : slices.values.size();
+  const std::string of_tables = tables > 1 ? fmt::format("{} tables of ", tables) : "";
   if (tables * sweep.values.size() * mu.size() > kMaxLutCells)
-    throw InvalidArgument(fmt::format("{}{} x {} cells is more than {}", tables > 1 ? "2 tables of " : "",
-                                      sweep.values.size(), mu.size(), kMaxLutCells));
+    throw InvalidArgument(fmt::format("{}{} x {} cells is more than {}", of_tables, sweep.values.size(), mu.size(), kMaxLutCells));
   if (o.average && tables * sweep.values.size() > kMaxLutAverages)
     throw InvalidArgument(fmt::format("--average: {}{} values of {} is more than {} (each E_avg costs 100-400 cells)",
-                                      tables > 1 ? "2 tables of " : "", sweep.values.size(), sweep.name, kMaxLutAverages));
+                                      of_tables, sweep.values.size(), sweep.name, kMaxLutAverages));
   const bool code = o.format == "cpp" || o.format == "glsl" || o.format == "hlsl";
   const double mu_power = io::spacing_power(o.mu);
-  if (code)
+  if (code) {
     require_even_spacing("--mu", mu, mu_power, o.format), require_even_spacing("--sweep", sweep.values, sweep.power, o.format);
-  std::vector<Channel> channels = channels_of(o, sweep);
+    require_even_spacing("--sweep", slices.values, slices.power, o.format);
+  }
+  std::vector<Channel> channels = channels_of(o, sweep, slices);
   for (const Channel& c : channels) c.at(sweep.values.front());  // a bad model or parameter fails before any work
-  for (Channel& c : channels) {
-    c.lut = analysis::albedo_lut(c.at, sweep.values, mu, o.average, progress_of(o, "cells" + c.suffix));
+  // A second --sweep's tables report the cells of all of them as each table finishes.
+  const analysis::Progress all_cells = slices.name.empty() ? analysis::Progress{} : progress_of(o, "cells");
+  const std::size_t per_table = sweep.values.size() * mu.size();
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    Channel& c = channels[k];
+    c.lut = analysis::albedo_lut(c.at, sweep.values, mu, o.average,
+                                 slices.name.empty() ? progress_of(o, "cells" + c.suffix) : analysis::Progress{});
     c.lut.p_power = sweep.power, c.lut.mu_power = mu_power;  // how the code's lookup interpolates
+    if (all_cells) all_cells((k + 1) * per_table, channels.size() * per_table);
   }
   const Provenance provenance = provenance_of(o, channels);
-  if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, channels, sweep, provenance);
-  if (o.format == "png16") return write_png16_lut(o, channels, sweep, provenance);
+  if (o.format == "exr" || o.format == "exr-half") return write_exr_lut(o, channels, sweep, slices, provenance);
+  if (o.format == "png16") return write_png16_lut(o, channels, sweep, slices, provenance);
   if (o.format == "npy") {
-    write_output(o.out, npy_of(channels, sweep));
+    write_output(o.out, npy_of(channels, sweep, slices));
     if (!o.quiet) fmt::print(stderr, "lut: {}\n", provenance_line(provenance));
     return;
   }
   if (!code) {
-    io::Table table = lut_table(channels, sweep);
+    io::Table table = lut_table(channels, sweep, slices);
     table.meta = {{"model", o.model.id}, {"command", provenance.command}, {"version", provenance.version},
                   {"sha256", provenance.sha256}};
     if (o.format == "json") return write_output(o.out, io::to_json(table, o.round));
     return write_output(o.out, "# " + provenance_line(provenance) + "\n" + io::to_csv(table, o.round));
   }
-  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name, mu_power, sweep.power};
-  std::vector<LutChannel> code_channels;
-  for (const Channel& c : channels)
-    code_channels.push_back({c.suffix, &c.lut,
-                             analysis::lut_interpolation_error(c.lut, c.at, progress_of(o, "interpolation error" + c.suffix))});
-  if (o.format == "cpp") return write_output(o.out, lut_cpp(code_channels, description));
-  write_output(o.out, o.format == "glsl" ? lut_glsl(code_channels, description) : lut_hlsl(code_channels, description));
+  const LutDescription description{provenance_line(provenance), describe_model(o), sweep.name, mu_power, sweep.power,
+                                   slices.name, slices.values, slices.power};
+  const std::vector<LutChannel> tables_in_code = code_channels(o, channels, sweep, slices);
+  if (o.format == "cpp") return write_output(o.out, lut_cpp(tables_in_code, description));
+  write_output(o.out, o.format == "glsl" ? lut_glsl(tables_in_code, description) : lut_hlsl(tables_in_code, description));
 }
 
 }  // namespace
@@ -306,10 +388,11 @@ void add_lut_command(CLI::App& app) {
   auto o = std::make_shared<LutOptions>();
   auto* cmd = app.add_subcommand("lut", "Energy-compensation tables: the albedo E(μ, p) and E_avg(p) of a model");
   o->model.add_to(*cmd);
-  cmd->add_option("--sweep", o->sweep,
+  cmd->add_option("--sweep", o->sweeps,
                   "The table's parameter axis: NAME=LIST (e.g. alpha=0.05:1@32, or alpha=0.01:1@32:pow2 uniform in "
-                  "sqrt(alpha); at most 1024 values, increasing); "
-                  "without it, one row at the model's values")->type_name("NAME=LIST");
+                  "sqrt(alpha); at most 1024 values, increasing); without it, one row at the model's values. Given "
+                  "twice, the second is a third axis q: one table per value (e.g. --sweep alpha=... --sweep f0=...)")
+      ->type_name("NAME=LIST")->expected(1)->take_all();
   cmd->add_option("--mu", o->mu, "μ = cos θ_i values, in [1e-9, 1], increasing: list or range, at most 1024 (a:b@count:pow3 crowds them toward grazing)")
       ->capture_default_str();
   cmd->add_flag("--average", o->average,
@@ -334,6 +417,9 @@ void add_lut_command(CLI::App& app) {
       "keys, so npy prints it on stderr.\n"
       "--schlick-split: CSV and JSON columns E_f0_0, E_f0_1 (and E_avg_f0_0, E_avg_f0_1); EXR in R and G; png16\n"
       "the two tables one below the other; npy of shape (2, p, mu); code has both and energy(mu, p, f0).\n"
+      "A second --sweep q (a third axis where E is not linear in it, e.g. cook-torrance-1982's f0): CSV/JSON\n"
+      "columns Q,P,mu,E, q-major; images the tables one below the other; npy (q, p, mu); code a trilinear\n"
+      "energy(mu, p, q) with its measured error. At most 65536 cells in all.\n"
       "Other parameters take -p NAME=VALUE. Examples:\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@32 --mu 0.03125:1@32 --average --out ggx_E.csv\n"
       "  specula lut --model ggx --sweep alpha=0.05:1@16 --mu 0.05:1@16 --average --format glsl -o ggx_E.glsl\n"

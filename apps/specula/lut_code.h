@@ -16,6 +16,10 @@ struct LutDescription {
   /// Each axis is evenly spaced in x^(1/power) (io::spacing_power: 1 linear, 2 in √x, …); the
   /// lookup maps x so before it locates the cell.
   double mu_power = 1, p_power = 1;
+  /// A second --sweep: its name, values and power; the channels are then its tables, one per value.
+  std::string q_param = "";
+  std::vector<double> q = {};
+  double q_power = 1;
 };
 
 /// One table of the file: the plain one (suffix ""), or E at F0 = 0 and at F0 = 1 of

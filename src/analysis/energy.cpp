@@ -292,6 +292,30 @@ AlbedoLut albedo_lut(const ModelAt& model_at, std::span<const double> p, std::sp
   return lut;
 }
 
+LutError lut_interpolation_error(std::span<const AlbedoLut> slices, std::span<const double> q, double q_power,
+                                 const SliceAt& slice_at, const Progress& progress) {
+  const AlbedoLut& lut = slices.front();
+  const std::vector<double> q_mid = midpoints_or_values(q, q_power);
+  const std::vector<double> p_mid = midpoints_or_values(lut.p, lut.p_power), mu_mid = midpoints_or_values(lut.mu, lut.mu_power);
+  LutError error;
+  for (const double qm : q_mid) {
+    const auto [k, w] = bracket(q, qm, q_power);
+    const AlbedoLut& a = slices[k];
+    const AlbedoLut& b = slices[std::min(k + 1, slices.size() - 1)];
+    const AlbedoLut exact = albedo_lut(slice_at(qm), p_mid, mu_mid, !lut.e_avg.empty(), progress);
+    for (std::size_t i = 0; i < p_mid.size(); ++i) {
+      for (std::size_t j = 0; j < mu_mid.size(); ++j) {
+        const double lookup = (1 - w) * a.bilinear(mu_mid[j], p_mid[i]) + w * b.bilinear(mu_mid[j], p_mid[i]);
+        error.e = std::max(error.e, std::abs(lookup - exact.at(i, j)));
+      }
+      if (!exact.e_avg.empty())
+        error.e_avg = std::max(error.e_avg, std::abs((1 - w) * a.linear_e_avg(p_mid[i]) + w * b.linear_e_avg(p_mid[i]) -
+                                                     exact.e_avg[i]));
+    }
+  }
+  return error;
+}
+
 LutError lut_interpolation_error(const AlbedoLut& lut, const ModelAt& model_at, const Progress& progress) {
   const std::vector<double> p_mid = midpoints_or_values(lut.p, lut.p_power), mu_mid = midpoints_or_values(lut.mu, lut.mu_power);
   const AlbedoLut exact = albedo_lut(model_at, p_mid, mu_mid, !lut.e_avg.empty() && lut.p.size() > 1, progress);

@@ -86,4 +86,12 @@ struct LutError {
 };
 LutError lut_interpolation_error(const AlbedoLut& lut, const ModelAt& model_at, const Progress& progress = {});
 
+/// The model at a second parameter's value q: the ModelAt of that slice.
+using SliceAt = std::function<ModelAt(double q)>;
+/// A table over a second parameter q, one AlbedoLut per value of q (all on one (p, μ) grid),
+/// looked up trilinearly (linearly in q^(1/q_power) between two slices' bilinear values), E_avg
+/// bilinearly in (p, q): its error against the cubature at the centres of the cells, as above.
+LutError lut_interpolation_error(std::span<const AlbedoLut> slices, std::span<const double> q, double q_power,
+                                 const SliceAt& slice_at, const Progress& progress = {});
+
 }  // namespace specula::analysis
