@@ -66,6 +66,13 @@ std::string header_comment(std::span<const LutChannel> channels, const LutDescri
   return text + ". Outside the grid the lookup clamps.\n";
 }
 
+/// The C++ lookups' cell finder.
+constexpr const char* kCppLocate =
+    "\n/// Cell index and weight of x on an axis, clamped to it.\n"
+    "inline void locate(float x, float first, float step, int count, int& i, int& i1, float& w) {\n"
+    "  const float t = std::clamp((x - first) / step, 0.0f, float(count - 1));\n"
+    "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}\n";
+
 /// Every table's E (or E_avg) one after the other: a second --sweep's tables, q-major.
 std::vector<double> concatenated(std::span<const LutChannel> channels, bool average) {
   std::vector<double> all;
@@ -97,11 +104,7 @@ std::string sliced_cpp(std::span<const LutChannel> channels, const LutDescriptio
                         "inline constexpr float kEAvg[kQCount * kPCount] = {{\n    {}}};\n",
                         float_list(concatenated(channels, true), 8));
   text += fmt::format(
-      "\n/// Cell index and weight of x on an axis, clamped to it.\n"
-      "inline void locate(float x, float first, float step, int count, int& i, int& i1, float& w) {{\n"
-      "  const float t = std::clamp((x - first) / step, 0.0f, float(count - 1));\n"
-      "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}}\n\n"
-      "/// E in the table of q_k at (mu, p), bilinear.\n"
+      "{3}\n/// E in the table of q_k at (mu, p), bilinear.\n"
       "inline float energy_in_table(int k, int i, int i1, float wp, int j, int j1, float wm) {{\n"
       "  const float* e = kE + k * kPCount * kMuCount;\n"
       "  const float e0 = e[i * kMuCount + j] + wm * (e[i * kMuCount + j1] - e[i * kMuCount + j]);\n"
@@ -113,7 +116,7 @@ std::string sliced_cpp(std::span<const LutChannel> channels, const LutDescriptio
       "  locate({2}, kMuFirst, kMuStep, kMuCount, j, j1, wm);\n"
       "  const float e0 = energy_in_table(k, i, i1, wp, j, j1, wm), e1 = energy_in_table(k1, i, i1, wp, j, j1, wm);\n"
       "  return e0 + wq * (e1 - e0);\n}}\n",
-      q_at, p_at, mu_at);
+      q_at, p_at, mu_at, kCppLocate);
   if (!first.e_avg.empty())
     text += fmt::format(
         "\n/// E_avg(p, q), bilinear.\ninline float energy_average(float p, float q) {{\n  int i, i1, k, k1;\n  float wp, wq;\n"
@@ -146,11 +149,7 @@ std::string lut_cpp(std::span<const LutChannel> channels, const LutDescription& 
     if (!c.lut->e_avg.empty())
       text += fmt::format("inline constexpr float kEAvg{}[kPCount] = {{\n    {}}};\n", c.suffix, float_list(c.lut->e_avg, 8));
   }
-  text +=
-      "\n/// Cell index and weight of x on an axis, clamped to it.\n"
-      "inline void locate(float x, float first, float step, int count, int& i, int& i1, float& w) {\n"
-      "  const float t = std::clamp((x - first) / step, 0.0f, float(count - 1));\n"
-      "  i = std::min(int(t), std::max(count - 2, 0));\n  i1 = std::min(i + 1, count - 1);\n  w = t - float(i);\n}\n";
+  text += kCppLocate;
   for (const LutChannel& c : channels) {
     text += fmt::format(
         "\n/// E{0}(mu, p), bilinear.\ninline float energy{0}(float mu, float p) {{\n  int i, i1, j, j1;\n  float wp, wm;\n"
@@ -195,6 +194,16 @@ std::string hlsl_array(const std::string& name, std::size_t size, const std::str
 constexpr ShaderWords kGlsl{"GLSL 3.30, ES 3.00, WebGL 2", "vec3", "mix", glsl_array};
 constexpr ShaderWords kHlsl{"HLSL (Shader Model 4 and later)", "float3", "lerp", hlsl_array};
 
+/// The shaders' cell finder.
+std::string shader_locate(const ShaderWords& w) {
+  return fmt::format(
+      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
+      "{0} specula_lut_locate(float x, float first, float step, int count) {{\n"
+      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
+      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n",
+      w.vec3);
+}
+
 /// A second --sweep's tables in GLSL or HLSL: E(mu, p, q) trilinear, E_avg(p, q) bilinear.
 std::string sliced_shader(std::span<const LutChannel> channels, const LutDescription& d, const ShaderWords& w) {
   const analysis::AlbedoLut& first = *channels.front().lut;
@@ -209,12 +218,8 @@ std::string sliced_shader(std::span<const LutChannel> channels, const LutDescrip
     const std::vector<double> e_avg = concatenated(channels, true);
     text += w.array("specula_lut_E_avg", e_avg.size(), float_list(e_avg, 8));
   }
-  text += fmt::format(
-      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
-      "{0} specula_lut_locate(float x, float first, float step, int count) {{\n"
-      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
-      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n\n"
-      "// E in the table of q_k at (mu, p), bilinear: a locates p, b locates mu.\n"
+  text += shader_locate(w) + fmt::format(
+      "\n// E in the table of q_k at (mu, p), bilinear: a locates p, b locates mu.\n"
       "float specula_lut_energy_in_table(int k, {0} a, {0} b) {{\n"
       "  int i = int(a.x), i1 = int(a.y), j = int(b.x), j1 = int(b.y), t = k * {2} * {3};\n"
       "  float e0 = {1}(specula_lut_E[t + i * {3} + j], specula_lut_E[t + i * {3} + j1], b.z);\n"
@@ -251,12 +256,7 @@ std::string lut_shader(std::span<const LutChannel> channels, const LutDescriptio
     text += w.array("specula_lut_E" + c.suffix, c.lut->e.size(), float_list(c.lut->e, 8));
     if (!c.lut->e_avg.empty()) text += w.array("specula_lut_E_avg" + c.suffix, p.count, float_list(c.lut->e_avg, 8));
   }
-  text += fmt::format(
-      "\n// Cell index (x), next index (y) and weight (z) of x on an axis, clamped to it.\n"
-      "{0} specula_lut_locate(float x, float first, float step, int count) {{\n"
-      "  float t = clamp((x - first) / step, 0.0, float(count - 1));\n"
-      "  int i = min(int(t), max(count - 2, 0));\n  return {0}(float(i), float(min(i + 1, count - 1)), t - float(i));\n}}\n",
-      w.vec3);
+  text += shader_locate(w);
   for (const LutChannel& c : channels) {
     text += fmt::format(
         "\n// E{8}(mu, p), bilinear.\nfloat specula_lut_energy{8}(float mu, float p) {{\n"

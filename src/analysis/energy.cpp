@@ -138,11 +138,11 @@ TableCache& table_cache() {
   return cache;
 }
 
-/// Index i and weight w with x = (1 − w) v[i] + w v[i + 1], clamped to the grid.
 /// x^(1/power): the coordinate a lookup interpolates in.
 double spaced(double x, double power) noexcept { return power == 1 ? x : std::pow(x, 1 / power); }
 
-/// The cell of x on the axis v (increasing) and x's weight in it, both in coordinates x^(1/power).
+/// Index i and weight w with u(x) = (1 − w) u(v[i]) + w u(v[i + 1]), u(x) = x^(1/power), clamped
+/// to the grid.
 std::pair<std::size_t, double> bracket(std::span<const double> v, double x, double power) noexcept {
   if (v.size() < 2) return {0, 0.0};
   const auto upper = std::upper_bound(v.begin(), v.end(), x);

@@ -111,8 +111,7 @@ MonteCarloEstimate albedo_monte_carlo(const Model& model, double theta_i, std::s
   check_interrupt();
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const Compensated* compensated = model.compensated();
-  SampleBlock block(model, l, compensated && scales(compensated->scheme));
+  SampleBlock block(model, l, model.fixes_viewer());
   for (std::size_t i = 0; i < samples; ++i) {
     const double choice = uniform(rng), xi1 = uniform(rng), xi2 = uniform(rng);
     Vec3 v;

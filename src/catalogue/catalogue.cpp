@@ -87,7 +87,7 @@ double scale_fresnel(CompensationScheme scheme, const fresnel::Channel& f, doubl
   switch (scheme) {
     case CompensationScheme::turquin_f0: return f(1.0);
     case CompensationScheme::turquin_favg: return f_avg;
-    case CompensationScheme::cycles: return f_avg * e_avg / (1 - f_avg * (1 - e_avg));
+    case CompensationScheme::cycles: return cycles_fresnel(f_avg, e_avg);
     default: return 1;
   }
 }

@@ -60,6 +60,11 @@ double kulla_conty_fresnel(double f_avg, double e_avg) noexcept {
   return stays > 0 ? f_avg * f_avg * e_avg / stays : 1;
 }
 
+double cycles_fresnel(double f_avg, double e_avg) noexcept {
+  const double stays = 1 - f_avg * (1 - e_avg);  // ≥ E_avg: 0 only for F_avg = 1, E_avg = 0
+  return stays > 0 ? f_avg * e_avg / stays : 1;
+}
+
 double Compensated::multiple_scattering(double mu_i, double mu_o) const noexcept {
   return fresnel_scale * table->multiple_scattering(mu_i, mu_o);
 }
@@ -76,17 +81,26 @@ double Compensated::albedo(double base_albedo, double mu) const noexcept {
   return base_albedo + fresnel_scale * std::max(0.0, 1 - table->at(mu)) * table->ms_scale;
 }
 
+namespace {
+
+/// The index of the suffix `id` ends with (after a base id of at least one character), or
+/// kCompensationSchemeCount.
+std::size_t suffix_index(std::string_view id) noexcept {
+  for (std::size_t k = 0; k < kCompensationSchemeCount; ++k)
+    if (id.size() > kCompensationSuffixes[k].size() && id.ends_with(kCompensationSuffixes[k])) return k;
+  return kCompensationSchemeCount;
+}
+
+}  // namespace
+
 std::string_view compensated_base_id(std::string_view id) noexcept {
-  for (const std::string_view suffix : kCompensationSuffixes)
-    if (id.size() > suffix.size() && id.ends_with(suffix)) return id.substr(0, id.size() - suffix.size());
-  return {};
+  const std::size_t k = suffix_index(id);
+  return k < kCompensationSchemeCount ? id.substr(0, id.size() - kCompensationSuffixes[k].size()) : std::string_view{};
 }
 
 CompensationScheme compensation_scheme_of(std::string_view id) noexcept {
-  for (std::size_t k = 0; k < kCompensationSchemeCount; ++k)
-    if (id.size() > kCompensationSuffixes[k].size() && id.ends_with(kCompensationSuffixes[k]))
-      return static_cast<CompensationScheme>(k);
-  return CompensationScheme::shipped;
+  const std::size_t k = suffix_index(id);
+  return k < kCompensationSchemeCount ? static_cast<CompensationScheme>(k) : CompensationScheme::shipped;
 }
 
 }  // namespace specula

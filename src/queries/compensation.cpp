@@ -21,12 +21,6 @@ namespace {
 using fresnel::Channel;
 using fresnel::Kind;
 
-// F_ms of Kulla & Conty's appendix: the Fresnel of the light that leaves after the first bounce,
-// F_avg E_avg / (1 − F_avg (1 − E_avg)).
-double multiple_fresnel(const CompensationInputs& in) noexcept {
-  return in.f_avg * in.e_avg / (1 - in.f_avg * (1 - in.e_avg));
-}
-
 // Whether `ggx+ms` has this Fresnel: GGX's Schlick with F90 = 1 and exponent 5.
 bool ggx_schlick(walk::Distribution d, const Channel& f) {
   return d == walk::Distribution::ggx && f.kind == Kind::schlick && f.f90 == 1 && f.exponent == 5;
@@ -53,7 +47,7 @@ double compensated_albedo(Compensation c, const CompensationInputs& in) noexcept
     case Compensation::turquin_f0: return in.e_f * (1 + in.f0 * missing);
     case Compensation::turquin_fresnel: return in.e_f * (1 + in.f_mu * missing);
     case Compensation::turquin_average: return in.e_f * (1 + in.f_avg * missing);
-    case Compensation::cycles: return in.e_f * (1 + multiple_fresnel(in) * missing);
+    case Compensation::cycles: return in.e_f * (1 + cycles_fresnel(in.f_avg, in.e_avg) * missing);
     case Compensation::walk_fit: {
       const double single = in.e > 0 ? in.e_f / in.e : 0;  // the Fresnel of the first bounce, averaged
       const double first = std::max(single, in.f_avg), later = (single + in.f_avg) / 2;

@@ -230,8 +230,8 @@ def test_the_examples_run_and_type_check(specula, tmp_path):
     # mypy (Debian's) against the package's stubs; without the sanitizers' runtimes, which it does not need.
     env = {k: v for k, v in os.environ.items() if k not in ("LD_PRELOAD", "ASAN_OPTIONS")}
     env["MYPYPATH"] = env["PYTHONPATH"]
-    # One mypy run (about 10 s each) checks the examples and the control: a script that passes a
-    # string where the stubs want numbers. Its error must be the only one.
+    # One mypy run checks the examples and the control together: a script that passes a string
+    # where the package's type annotations (.pyi) want numbers. Its error must be the only one.
     control = tmp_path / "control_string_for_a_number.py"
     control.write_text("import specula\nspecula.model('log', n='x')\n")
     done = subprocess.run(["mypy", "--strict", "--no-incremental", *scripts, str(control)], capture_output=True,

@@ -80,6 +80,11 @@ struct EnergyTable {
 /// reflects F_avg on average and a bounce leaves with probability E_avg. 1 at F_avg = 1.
 double kulla_conty_fresnel(double f_avg, double e_avg) noexcept;
 
+/// Kulla & Conty's F_ms as Cycles scales by it, F_avg E_avg / (1 − F_avg (1 − E_avg)): the Fresnel
+/// of the light that leaves after its first bounce (kulla_conty_fresnel is F_avg times it). 1 at
+/// F_avg = 1.
+double cycles_fresnel(double f_avg, double e_avg) noexcept;
+
 /// Which compensation a suffix names (the header's comment).
 enum class CompensationScheme { shipped, kulla_conty, turquin_f0, turquin_f, turquin_favg, cycles };
 inline constexpr std::size_t kCompensationSchemeCount = static_cast<std::size_t>(CompensationScheme::cycles) + 1;
