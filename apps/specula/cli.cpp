@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <iostream>
 
@@ -39,6 +40,29 @@ ParamValues ModelOptions::param_values() const {
     values[name] = io::parse_number(std::string_view(p).substr(eq + 1), "--param " + name);
   }
   return values;
+}
+
+bool ModelOptions::per_channel() const {
+  return std::any_of(params.begin(), params.end(), [](const std::string& p) { return p.find(',') != std::string::npos; });
+}
+
+ModelOptions ModelOptions::channel(int c) const {
+  ModelOptions one = *this;
+  for (std::string& p : one.params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || p.find(',') == std::string::npos) continue;
+    std::vector<std::string> values;
+    for (std::size_t at = eq + 1;;) {
+      const auto comma = p.find(',', at);
+      values.push_back(p.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    if (values.size() != 3)
+      throw InvalidArgument(fmt::format("--param '{}': give one value, or three (R,G,B) for a coloured material", p));
+    p = p.substr(0, eq + 1) + values[static_cast<std::size_t>(c)];
+  }
+  return one;
 }
 
 std::optional<Form> ModelOptions::form_override() const {

@@ -38,6 +38,12 @@ struct ModelOptions {
   /// Adds --coef K: override a lobe model's k (e.g. with a coefficient from `normalize`).
   void add_coef_to(CLI::App& command);
   ParamValues param_values() const;
+  /// True when a parameter has three values, R,G,B (-p eta=0.14,0.37,1.44): a coloured material,
+  /// one model per channel (render).
+  bool per_channel() const;
+  /// The options of channel 0, 1 or 2: each three-valued parameter at that channel's value, the
+  /// others as given. Throws InvalidArgument for a list that is not of three values.
+  ModelOptions channel(int c) const;
   std::optional<Form> form_override() const;
   /// The model as queries name it; make() builds it (errors spell the options).
   queries::ModelSpec spec() const;

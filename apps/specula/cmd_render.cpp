@@ -55,9 +55,10 @@ render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o,
   std::vector<std::string> params;
   for (std::size_t i = 0; i < model.params().size(); ++i)
     params.push_back(fmt::format("{}={}", model.info().params[i].name, io::format_number(model.params()[i])));
+  if (o.model.per_channel()) params = o.model.params;  // as given: NAME=R,G,B
   render::Metadata meta{{"Software", "specula"},
                         {"model", std::string(model.id())},
-                        {"parameters", fmt::format("{}", fmt::join(params, ","))},
+                        {"parameters", fmt::format("{}", fmt::join(params, o.model.per_channel() ? "; " : ","))},
                         {"form", model.is_lobe() ? to_string(model.form()) : "-"}};
   if (model.is_lobe()) meta.emplace_back("coef", io::format_number(model.coef()));
   meta.insert(meta.end(), {{"renderer", o.backend}, {"scene", o.scene.mesh}, {"size", o.scene.size}});
@@ -106,6 +107,41 @@ std::string lighting_text(const RenderOptions& o, const render::Scene& scene) {
   return fmt::format("{} light{}", scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
 }
 
+/// A scene and its image.
+struct SceneRender {
+  render::Scene scene;
+  Rendered rendered;
+};
+
+SceneRender render_one(const RenderOptions& o, render::Backend backend,
+                       const std::optional<render::Environment>& environment, const render::RenderSettings& settings) {
+  render::Scene scene = scene_of(o);
+  Rendered rendered = render_on_backend(o, backend, scene, environment, settings);
+  return {std::move(scene), std::move(rendered)};
+}
+
+/// A coloured material (ModelOptions::per_channel): one render per channel with that channel's
+/// model, each giving its channel of the image; the scene of channel 0 stands for the rest.
+SceneRender render_per_channel(const RenderOptions& o, render::Backend backend,
+                                  const std::optional<render::Environment>& environment,
+                                  const render::RenderSettings& settings) {
+  std::optional<SceneRender> out;
+  for (int c = 0; c < 3; ++c) {
+    RenderOptions channel = o;
+    channel.model = o.model.channel(c);
+    render::Scene scene = scene_of(channel);
+    Rendered rendered = render_on_backend(channel, backend, scene, environment, settings);
+    if (!out) {  // channel 0: its image, whose G and B the next channels replace
+      out.emplace(SceneRender{std::move(scene), std::move(rendered)});
+      continue;
+    }
+    auto to = out->rendered.image.samples();
+    const auto from = rendered.image.samples();
+    for (std::size_t k = static_cast<std::size_t>(c); k < to.size(); k += 3) to[k] = from[k];
+  }
+  return std::move(*out);
+}
+
 void run_render(const RenderOptions& o) {
   const render::ImageFormat format = render::image_format(o.out);
   const render::Display display = o.scene.display();
@@ -114,11 +150,14 @@ void run_render(const RenderOptions& o) {
   const render::ExrPixel exr_pixel = parse_exr_pixel(o.exr_pixel);
   const render::Backend backend = parse_backend(o.backend);
   const render::RenderSettings settings = o.scene.settings();
-  const render::Scene scene = scene_of(o);
   const std::optional<render::Environment> environment = environment_of(o, backend, settings);
+  for (int c = 0; c < (o.model.per_channel() ? 3 : 0); ++c) o.model.channel(c).make();  // refuse before rendering
 
   const auto start = std::chrono::steady_clock::now();
-  const Rendered rendered = render_on_backend(o, backend, scene, environment, settings);
+  const SceneRender done = o.model.per_channel() ? render_per_channel(o, backend, environment, settings)
+                                                 : render_one(o, backend, environment, settings);
+  const render::Scene& scene = done.scene;
+  const Rendered& rendered = done.rendered;
   const double render_ms = milliseconds_since(start);
   const auto written = std::chrono::steady_clock::now();
   if (format == render::ImageFormat::png)
@@ -137,6 +176,9 @@ void add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand("render", "Render a sphere or an OBJ mesh shaded with a model");
   o->model.add_to(*cmd);
+  cmd->get_option("--param")->description(
+      "Parameter as NAME=VALUE, repeatable; NAME=R,G,B gives a coloured material, one model per channel\n"
+      "(-p eta=0.143,0.374,1.442 -p kappa=3.98,2.38,1.60: gold as ggx-conductor)");
   o->model.add_coef_to(*cmd);
   o->scene.add_to(*cmd, Picture::render);
   cmd->add_option("--exr-pixel", o->exr_pixel, "EXR samples: half or float")->capture_default_str()
@@ -166,6 +208,8 @@ void add_render_command(CLI::App& app) {
       "  specula render --model ggx -p alpha=0.2 --scene bunny.obj --exr-pixel float --out bunny.exr\n"
       "  specula render --model log-normalized -p n=50 --backend gl --size 2048x2048 --verbose --out big.png\n"
       "  specula render --model ggx --env white --out furnace.exr\n"
+      "  specula render --model ggx-conductor -p alpha=0.3 -p eta=0.143,0.374,1.442 -p kappa=3.98,2.38,1.60 \\\n"
+      "      --env white --out gold.png                     # a metal: one model per channel\n"
       "  specula render --model ggx -p alpha=0.2 --env probe.exr --samples 256 --seed 7 --out ggx.exr");
   cmd->callback([o] { run_render(*o); });
 }

@@ -58,8 +58,8 @@ void add_verdict_command(CLI::App& app) {
   cmd->footer(
       "The compensations (docs/energy-compensation.md): none, kulla-conty (Kulla & Conty 2017, F_avg² E_avg /\n"
       "(1 - F_avg (1 - E_avg)) on f_ms), turquin-f0 / turquin-f / turquin-favg (Turquin 2019 with F0, F(θ), F_avg),\n"
-      "cycles (albedo scaling with F_ms), walk-fit (derived from the walk), and ggx+ms, what specula ships (the walk's\n"
-      "own table; on the Schlick cells only, nan elsewhere). Fresnels: Schlick F0 0.04-0.9, dielectrics 1.1-2.5, gold,\n"
+      "cycles (albedo scaling with F_ms), walk-fit (derived from the walk), and ggx+ms, what specula ships (+ms on the\n"
+      "GGX model of each Fresnel: the walk's own table, at the F0 of the same F_avg for non-Schlick kinds). Fresnels: Schlick F0 0.04-0.9, dielectrics 1.1-2.5, gold,\n"
       "copper, aluminium.\n"
       "The summary gives, per Fresnel family and compensation, the largest and RMS |albedo - walk| over the grid.\n"
       "Examples:\n"

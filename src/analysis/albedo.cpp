@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../numeric/piecewise.h"
+#include "specula/analysis/fresnel.h"
 #include "specula/analysis/parallel.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
@@ -62,19 +63,32 @@ struct HalfVectorShape {
   double width;
   double support = std::numbers::pi / 2;  ///< f is 0 beyond, or below 1e-18 of its integral
   bool vcavity = false;
+  std::vector<double> fresnel_kinks = {};  ///< the V·H where F bends (analysis::fresnel_kinks)
 };
+
+/// The φ_h where L·H = V·H is `lh`, for L at θ_i and H at θ_h; −1 for none.
+double phi_where_lh(double lh, double ci, double si, double ch, double sh) {
+  const double x = (lh - ci * ch) / (si * sh);
+  return x > -1 && x < 1 ? std::acos(x) : -1.0;
+}
 
 /// The φ_h where G's min() switches, for L at θ_i and H at θ_h (V·H = L·H): up to θ_h = 45°,
 /// where 2(N·H)(N·L) = V·H and where 2(N·H)(N·V) = V·H (each term reaches 1 while the other is
 /// above it); beyond, where N·V = N·L (the two terms cross below 1); −1 for none.
-std::array<double, 2> vcavity_kinks(double ci, double si, double ch, double sh) {
-  auto phi_where_lh = [&](double lh) {
-    const double x = (lh - ci * ch) / (si * sh);
-    return x > -1 && x < 1 ? std::acos(x) : -1.0;
-  };
+std::vector<double> vcavity_kinks(double ci, double si, double ch, double sh) {
   const double q = 4 * ch * ch - 1;
-  if (2 * ch * ch < 1) return {phi_where_lh(ci / ch), -1.0};
-  return {phi_where_lh(2 * ch * ci), phi_where_lh(2 * ch * ci / q)};
+  if (2 * ch * ch < 1) return {phi_where_lh(ci / ch, ci, si, ch, sh)};
+  return {phi_where_lh(2 * ch * ci, ci, si, ch, sh), phi_where_lh(2 * ch * ci / q, ci, si, ch, sh)};
+}
+
+/// The θ_h in (0, upper) where the outer integrand bends because a Fresnel kink at V·H = c enters
+/// or leaves the φ_h range: where L·H at φ_h = 0 or π, cos(θ_i ∓ θ_h), is c.
+std::vector<double> fresnel_bends(double theta_i, double upper, const std::vector<double>& kink_cosines) {
+  std::vector<double> bends;
+  for (const double c : kink_cosines)
+    for (const double theta_h : {std::acos(c) - theta_i, std::acos(c) + theta_i, theta_i - std::acos(c)})
+      if (theta_h > 0 && theta_h < upper) bends.push_back(theta_h);
+  return bends;
 }
 
 /// Appends the roots of gap(θ_h) in (lo, hi): a scan for sign changes, then bisection.
@@ -125,9 +139,9 @@ numeric::Estimate integrate_inner(const G& g, double a, double b, const std::vec
 /// singularity there that bisection refines to its depth limit: φ = end·u(2 − u), end − φ =
 /// end·(1 − u)², makes it smooth in u.
 template <class G>
-numeric::Estimate integrate_azimuth(const G& g, double end, const std::array<double, 2>& kinks) {
+numeric::Estimate integrate_azimuth(const G& g, double end, const std::vector<double>& kinks) {
   if (!(end > 0)) return {};
-  if (end >= kPi) return integrate_inner(g, 0, end, {kinks.begin(), kinks.end()});
+  if (end >= kPi) return integrate_inner(g, 0, end, kinks);
   auto in_u = [&](double u) { return g(end * u * (2 - u)) * 2 * end * (1 - u); };
   std::vector<double> kinks_u;
   for (const double phi : kinks)
@@ -165,7 +179,9 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
       }
       return v.z > 0 && lh > 0 ? 4 * lh * v.z * f_at(l, v, theta_h) : 0.0;
     };
-    const auto kinks = shape.vcavity && si * sh > 0 ? vcavity_kinks(ci, si, ch, sh) : std::array{-1.0, -1.0};
+    std::vector<double> kinks = shape.vcavity && si * sh > 0 ? vcavity_kinks(ci, si, ch, sh) : std::vector<double>{};
+    if (si * sh > 0)
+      for (const double c : shape.fresnel_kinks) kinks.push_back(phi_where_lh(c, ci, si, ch, sh));
     const auto e = integrate_azimuth(inner, end, kinks);
     inner_evaluations += e.evaluations;
     return sh * e.value;
@@ -174,7 +190,8 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
   const double horizon_starts = (kPi / 2 - theta_i) / 2;
   // With a V-cavity G the outer integrand also bends where G's kinks enter or leave the φ range
   // (vcavity_bends) and, at normal incidence, at θ_h = 30°.
-  std::vector<double> breaks{horizon_starts, shape.support};
+  std::vector<double> breaks = fresnel_bends(theta_i, upper, shape.fresnel_kinks);
+  breaks.insert(breaks.end(), {horizon_starts, shape.support});
   if (shape.vcavity && si > 0) {
     for (const double theta_h : vcavity_bends(theta_i, upper)) breaks.push_back(theta_h);
   } else if (shape.vcavity) {
@@ -187,11 +204,19 @@ Albedo half_vector_albedo(const F& f_at, double theta_i, const HalfVectorShape& 
   return {2 * e.value, 2 * e.error, inner_evaluations};
 }
 
-/// Cook & Torrance's m (Beckmann's RMS slope), or 0 for another BRDF.
+/// Beckmann's RMS slope (Cook & Torrance's m, Beckmann-Smith's α), or 0 for another BRDF.
 double beckmann_slope(const FullBrdf& brdf) {
   if (const auto* ct = std::get_if<CookTorrance>(&brdf)) return ct->m;
   if (const auto* ct = std::get_if<CookTorrance1982>(&brdf)) return ct->m;
+  if (const auto* b = std::get_if<Beckmann>(&brdf)) return b->alpha;
   return 0;
+}
+
+/// The cosines V·H where the BRDF's Fresnel has a kink (total internal reflection, F82's clamp).
+std::vector<double> fresnel_kinks_of(const FullBrdf& brdf) {
+  if (const auto* g = std::get_if<Ggx>(&brdf)) return fresnel_kinks(g->fresnel);
+  if (const auto* b = std::get_if<Beckmann>(&brdf)) return fresnel_kinks(b->fresnel);
+  return {};
 }
 
 /// The θ_h beyond which Beckmann's D = exp(−tan²θ_h / m²) / (π m² cos⁴θ_h) is below e^−50
@@ -231,7 +256,7 @@ Albedo albedo(const Model& model, double theta_i) {
   if (model.is_lobe() && model.form() == Form::rv)
     return std::visit([&](const auto& l) { return rv_albedo(l, model.coef(), theta_i); }, model.lobe());
   if (const Compensated* compensated = model.compensated()) return compensated_albedo(*compensated, theta_i);
-  HalfVectorShape shape{angular_width(model)};
+  HalfVectorShape shape{.width = angular_width(model)};
   if (model.is_lobe()) {
     return std::visit(
         [&](const auto& lobe) {
@@ -248,6 +273,7 @@ Albedo albedo(const Model& model, double theta_i) {
   shape.vcavity = std::holds_alternative<CookTorrance>(model.brdf()) ||
                   std::holds_alternative<CookTorrance1982>(model.brdf()) || (formula && formula->has_switches());
   if (const double m = beckmann_slope(model.brdf()); m > 0) shape.support = beckmann_support(m);
+  shape.fresnel_kinks = fresnel_kinks_of(model.brdf());
   const Vec3 n{0, 0, 1};
   return half_vector_albedo([&](const Vec3& l, const Vec3& v, double) { return model(n, l, v); }, theta_i, shape);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "specula/analysis/energy.h"
+#include "specula/analysis/fresnel.h"
 
 namespace specula::analysis {
 namespace {
@@ -43,6 +44,11 @@ EnergyTable ggx_walk_table(double alpha, double f0) {
   table.interpolation_error = kWalkInterpolationError;
   table.albedo_error = kWalkInterpolationError;
   return table;
+}
+
+double walk_equivalent_f0(const fresnel::Channel& f) {
+  if (f.is_schlick_f0()) return f.f0;
+  return std::clamp((21 * fresnel_average(f).value - 1) / 20, 0.0, 1.0);
 }
 
 }  // namespace specula::analysis

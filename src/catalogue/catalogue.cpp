@@ -35,7 +35,7 @@ ModelInfo builtin_info(const families::Family& family, const families::ModelDefi
   ModelInfo info{std::string(model.id), std::string(model.name), std::string(model.summary),
                  std::string(model.source), family.kind, model.form, model.normalization,
                  std::string(model.coef_text), {}, {}, nullptr, {}};
-  for (const auto& p : family.params)
+  for (const auto& p : families::params_of(family, model))
     info.params.push_back({std::string(p.name), p.default_value, p.min, p.max, p.min_exclusive, std::string(p.meaning)});
   if (family.kind == ModelKind::brdf)
     info.make = [&model](std::span<const double> p) -> ModelImpl { return model.make_brdf(p); };
@@ -75,9 +75,21 @@ CompensatedInfos& compensated_infos() {
 }
 
 /// M with F = 1 where M has a Fresnel (its f0 set to 1), else M itself: whose table M+ms uses.
-ParamValues white_params(const ModelInfo& base, ParamValues params, const std::optional<fresnel::Channel>& f) {
-  if (f && base.find_param("f0")) params["f0"] = 1;
-  return params;
+/// M with F ≡ 1, the model of M's energy table: M itself at F0 = 1 where that makes F ≡ 1 (Schlick's
+/// F0, Cook-Torrance 1982's dielectric); else the first model of M's family (its Schlick F0 one:
+/// families/fresnel.h) at M's roughness and F0 = 1. M itself where it has no Fresnel.
+Model white_model(const std::shared_ptr<const ModelInfo>& base, ParamValues params,
+                  const std::optional<fresnel::Channel>& f) {
+  if (!f || f->is_one()) return make_model(base, params);
+  if (base->find_param("f0")) {
+    params["f0"] = 1;
+    Model at_one = make_model(base, params);
+    if (const auto g = fresnel_of(at_one); g && g->is_one()) return at_one;
+  }
+  const families::Family* family = families::family_of(*base);
+  const std::string roughness(base->params.front().name);
+  const std::string white(family ? family->models.front().id : std::string_view(base->id));
+  return make_model(white, {{roughness, params.at(roughness)}, {"f0", 1}});
 }
 
 /// The F_s of a scaled scheme with a constant one (models/compensated.h), from M's Fresnel `f` and
@@ -93,7 +105,8 @@ double scale_fresnel(CompensationScheme scheme, const fresnel::Channel& f, doubl
 }
 
 /// The table and Fresnel factor of M compensated by `scheme` (models/compensated.h). M+ms for GGX
-/// with F0 < 1: the random walk's own multiply scattered albedo (analysis::ggx_walk_table), F_ms = 1.
+/// with any Fresnel below 1: the random walk's own multiply scattered albedo (analysis::ggx_walk_table
+/// at analysis::walk_equivalent_f0), F_ms = 1.
 /// Every other case: the cached energy table of M with F = 1 (analysis/energy.h: the table is M's
 /// albedo, which is why the catalogue sits above analysis), and the scheme's factor from M's
 /// Fresnel (F ≡ 1 where M has none).
@@ -101,11 +114,11 @@ Compensated compensation_of(const ModelInfo& base, const ParamValues& params, st
                             CompensationScheme scheme) {
   const std::shared_ptr<const ModelInfo> listed(std::shared_ptr<const ModelInfo>(), &base);
   const std::optional<fresnel::Channel> f = fresnel_of(*model);
-  if (const auto* ggx = f ? std::get_if<Ggx>(&model->brdf()) : nullptr;
-      ggx && ggx->f0 < 1 && scheme == CompensationScheme::shipped)  // f: a full BRDF
-    return {scheme, std::move(model), std::make_shared<const EnergyTable>(analysis::ggx_walk_table(ggx->alpha, ggx->f0)),
-            1.0, std::nullopt};
-  auto table = analysis::cached_energy_table(make_model(listed, white_params(base, params, f)));
+  if (const auto* ggx = f ? std::get_if<Ggx>(&model->brdf()) : nullptr; ggx && scheme == CompensationScheme::shipped)
+    if (const double f0 = analysis::walk_equivalent_f0(ggx->fresnel); f0 < 1)
+      return {scheme, std::move(model), std::make_shared<const EnergyTable>(analysis::ggx_walk_table(ggx->alpha, f0)),
+              1.0, std::nullopt};
+  auto table = analysis::cached_energy_table(white_model(listed, params, f));
   Compensated c{scheme, std::move(model), std::move(table), 1.0, std::nullopt};
   if (!f) return c;
   if (scheme == CompensationScheme::turquin_f)
@@ -185,7 +198,8 @@ const ModelInfo* find_compensated(std::string_view id) noexcept {
 std::optional<fresnel::Channel> fresnel_of(const Model& model) {
   if (model.is_lobe() || model.compensated() || !model.info().is_builtin()) return std::nullopt;
   const FullBrdf& brdf = model.brdf();
-  if (const auto* m = std::get_if<Ggx>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
+  if (const auto* m = std::get_if<Ggx>(&brdf)) return m->fresnel;
+  if (const auto* m = std::get_if<Beckmann>(&brdf)) return m->fresnel;
   if (const auto* m = std::get_if<CookTorrance>(&brdf)) return fresnel::Channel{fresnel::Kind::schlick, m->f0};
   if (const auto* m = std::get_if<CookTorrance1982>(&brdf)) {
     if (m->f0 >= 1) return fresnel::Channel{};

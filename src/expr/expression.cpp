@@ -36,7 +36,7 @@ bool is_identifier(std::string_view name) {
 void check_variable_names(const std::vector<std::string>& variables) {
   for (std::size_t i = 0; i < variables.size(); ++i) {
     const std::string& name = variables[i];
-    if (!is_identifier(name) || function_named(name))
+    if (!is_identifier(name) || is_reserved_call(name))
       throw InvalidArgument(fmt::format("invalid variable name '{}'", name));
     if (std::find(variables.begin(), variables.begin() + static_cast<std::ptrdiff_t>(i), name) !=
         variables.begin() + static_cast<std::ptrdiff_t>(i))

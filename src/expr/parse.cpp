@@ -198,6 +198,7 @@ class Parser {
   void parse_identifier() {
     const Token name = token_;
     advance();
+    if (is_fresnel_call(name.text)) return parse_fresnel_call(name);
     const auto function = function_named(name.text);
     if (at_symbol('(') && !function)
       fail(name.column, fmt::format("unknown function '{}'", name.text));
@@ -225,6 +226,27 @@ class Parser {
       fail(name.column, fmt::format("'{}' takes {} argument{} but was given {}", name.text,
                                     arity(function), arity(function) == 1 ? "" : "s", arguments));
     emit(function);
+  }
+
+  /// A Fresnel call: each argument parsed on its own, then the call's expansion in their place.
+  void parse_fresnel_call(const Token& name) {
+    if (!at_symbol('(')) expected(fmt::format("'(' after '{}'", name.text));
+    std::vector<std::vector<Node>> arguments;
+    do {
+      advance();
+      const std::size_t first = nodes_.size();
+      parse_sum();
+      arguments.emplace_back(nodes_.begin() + static_cast<std::ptrdiff_t>(first), nodes_.end());
+      nodes_.resize(first);
+    } while (at_symbol(','));
+    if (!at_symbol(')')) expected("',' or ')'");
+    advance();
+    try {
+      const std::vector<Node> expansion = expand_fresnel_call(name.text, arguments);
+      nodes_.insert(nodes_.end(), expansion.begin(), expansion.end());
+    } catch (const InvalidArgument& e) {
+      fail(name.column, e.what());
+    }
   }
 
   std::uint32_t variable_index(const Token& name) {

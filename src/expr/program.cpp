@@ -38,7 +38,7 @@ Expression bind_constants(const Expression& e, std::size_t first_constant) {
 void require_slot_name(std::string_view name, std::string_view what) {
   if (constant_named(name))
     throw InvalidArgument(fmt::format("{} name '{}' is reserved for the constant {}", what, name, name));
-  if (function_named(name))
+  if (is_reserved_call(name))
     throw InvalidArgument(fmt::format("{} name '{}' is a function name", what, name));
   const bool identifier =
       !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&

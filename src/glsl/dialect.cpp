@@ -43,6 +43,7 @@ constexpr std::array kBuiltins{
     Word{"cos", "cos", "metal::cos", "cos"},
     Word{"cross", "cross", "metal::cross", "cross"},
     Word{"dot", "dot", "metal::dot", "dot"},
+    Word{"erfc", "", "", "erfc"},  // the C++ target's specula_erfc only (glsl.cpp: erfc_function)
     Word{"exp", "exp", "metal::exp", "exp"},
     Word{"exp2", "exp2", "metal::exp2", "exp2"},
     Word{"inversesqrt", "rsqrt", "metal::rsqrt", "inversesqrt"},
@@ -160,6 +161,7 @@ inline double clamp(double x, double lo, double hi) { return min(max(x, lo), hi)
 inline double abs(double x) { return std::fabs(x); }
 inline double pow(double x, double y) { return std::pow(x, y); }
 inline double exp(double x) { return std::exp(x); }
+inline double erfc(double x) { return std::erfc(x); }
 inline double exp2(double x) { return std::exp2(x); }
 inline double log(double x) { return std::log(x); }
 inline double log2(double x) { return std::log2(x); }

@@ -47,6 +47,19 @@ std::string chebyshev_function(const Target& target, const std::string& name, st
   return body;
 }
 
+/// `float specula_erfc(float x)` for x ≥ 0: the C library's in double targets (C++), else
+/// Numerical Recipes' erfcc (Press et al. 1992, §6.2), relative error below 1.2e-7 (float's rounding).
+std::string erfc_function(const Target& target) {
+  if (target.in_double()) return "// erfc(x), the C library's.\nfloat specula_erfc(float x) {\n  return erfc(x);\n}";
+  return "// Numerical Recipes' erfcc (Press et al. 1992, 6.2) for x >= 0: relative error below 1.2e-7.\n"
+         "float specula_erfc(float x) {\n"
+         "  float t = 1.0 / (1.0 + 0.5 * x);\n"
+         "  float p = -0.82215223 + t * 0.17087277;\n"
+         "  p = 0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * p));\n"
+         "  p = 0.37409196 + t * (0.09678418 + t * (-0.18628806 + t * p));\n"
+         "  return t * exp(-x * x - 1.26551223 + t * (1.00002368 + t * p));\n}";
+}
+
 /// What the shader files may name as ${name}: constants and series from C++, as literals of the
 /// target's precision.
 Placeholders computed_values(const Target& target) {
@@ -58,7 +71,8 @@ Placeholders computed_values(const Target& target) {
           {"1/(2 ln2)", lit(1 / (2 * kLn2))},
           {"1/(2 pi ln2)", lit(1 / (2 * kPi * kLn2))},
           {"log_coef_j_series", chebyshev_function(target, "specula_log_coef_j", cheb::kJ, cheb::kJHigh)},
-          {"log_coef_k_series", chebyshev_function(target, "specula_log_coef_k", cheb::kK, cheb::kKHigh)}};
+          {"log_coef_k_series", chebyshev_function(target, "specula_log_coef_k", cheb::kK, cheb::kKHigh)},
+          {"erfc_function", erfc_function(target)}};
 }
 
 /// The name of the function `float NAME(float n)` that a coefficient file defines last.
@@ -195,20 +209,20 @@ void add_lobe_entry(ShaderSource& src, const Target& target, const Model& model)
 
 void add_entry(ShaderSource& src, const Target& target, const Model& model);
 
-/// M's Fresnel at the cosine `c` (a variable's name) as an expression, for turquin-f's scale.
+/// M's Fresnel at the cosine `c` (a variable's name) as an expression, for turquin-f's scale
+/// (the functions of brdfs/fresnel.glsl, which the caller adds).
 std::string fresnel_expression(const Target& target, const fresnel::Channel& f, const std::string& c) {
   const auto lit = [&](double value) { return target.literal(value); };
   switch (f.kind) {
     case fresnel::Kind::one: return lit(1);
     case fresnel::Kind::schlick:
-      return fmt::format("({} + ({}) * pow(1.0 - {}, {}))", lit(f.f0), lit(f.f90 - f.f0), c, lit(f.exponent));
-    case fresnel::Kind::f82_tint:
-      return fmt::format("clamp({} + ({}) * pow(1.0 - {}, 5.0) - {} * {} * pow(1.0 - {}, 6.0), 0.0, 1.0)", lit(f.f0),
-                         lit(1 - f.f0), c, lit(fresnel::f82_tint_b(f.f0, f.tint)), c, c);
-    case fresnel::Kind::dielectric: return fmt::format("specula_fresnel_dielectric({}, {})", c, lit(f.eta));
-    case fresnel::Kind::conductor: break;
+      return fmt::format("specula_fresnel_schlick_full({}, {}, {}, {})", c, lit(f.f0), lit(f.f90), lit(f.exponent));
+    case fresnel::Kind::f82_tint: return fmt::format("specula_fresnel_f82({}, {}, {})", c, lit(f.f0), lit(f.tint));
+    case fresnel::Kind::dielectric: return fmt::format("specula_fresnel_dielectric_eta({}, {})", c, lit(f.eta));
+    case fresnel::Kind::conductor:
+      return fmt::format("specula_fresnel_conductor({}, {}, {})", c, lit(f.eta), lit(f.kappa));
   }
-  throw InvalidArgument("a conductor's Fresnel is not exported to shading languages");
+  unreachable();
 }
 
 /// The compensated model's energy table as a function `<entry>_energy(mu)`: a chain of linear pieces
@@ -266,13 +280,7 @@ void add_scaled_entry(ShaderSource& src, const Target& target, const Model& mode
   const std::string name = entry_name(model), names = parameter_names(base.info());
   const std::string f_s = compensated.fresnel ? fresnel_expression(target, *compensated.fresnel, "nv")
                                               : target.literal(compensated.fresnel_scale);
-  if (compensated.fresnel && compensated.fresnel->kind == fresnel::Kind::dielectric)
-    src.add("specula_fresnel_dielectric",
-            "// The exact dielectric Fresnel, Cook & Torrance 1982 eq. 8; total internal reflection where g^2 <= 0.\n"
-            "float specula_fresnel_dielectric(float c, float eta) {\n"
-            "  float g2 = eta * eta - 1.0 + c * c;\n  if (g2 <= 0.0) return 1.0;\n  float g = sqrt(g2);\n"
-            "  float a = (g - c) / (g + c), b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);\n"
-            "  return 0.5 * a * a * (1.0 + b * b);\n}");
+  if (compensated.fresnel) src.add_file("brdfs/fresnel.glsl");
   src.add(name, fmt::format("// {}: f = f_{} (1 + F_s (1 - E(N.V)) / E(N.V)), F_s = {}; not reciprocal. The table holds E\n"
                             "// at the parameter values it was made for only. Source: Turquin 2019.\n"
                             "float {}(vec3 N, vec3 L, vec3 V{}) {{\n  float nl = dot(N, L), nv = dot(N, V);\n"

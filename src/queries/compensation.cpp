@@ -21,9 +21,22 @@ namespace {
 using fresnel::Channel;
 using fresnel::Kind;
 
-// Whether `ggx+ms` has this Fresnel: GGX's Schlick with F90 = 1 and exponent 5.
-bool ggx_schlick(walk::Distribution d, const Channel& f) {
-  return d == walk::Distribution::ggx && f.kind == Kind::schlick && f.f90 == 1 && f.exponent == 5;
+// The GGX model whose Fresnel is `f` (families/ggx.h: one model per kind), at α.
+Model ggx_with(const Channel& f, double alpha, std::string_view suffix) {
+  const auto named = [&](std::string id, ParamValues p) {
+    p["alpha"] = alpha;
+    return make_model(id + std::string(suffix), p);
+  };
+  switch (f.kind) {
+    case Kind::one: return named("ggx", {{"f0", 1}});
+    case Kind::schlick:
+      if (f.is_schlick_f0()) return named("ggx", {{"f0", f.f0}});
+      return named("ggx-schlick", {{"f0", f.f0}, {"f90", f.f90}, {"exponent", f.exponent}});
+    case Kind::f82_tint: return named("ggx-f82", {{"f0", f.f0}, {"tint", f.tint}});
+    case Kind::dielectric: return named("ggx-dielectric", {{"eta", f.eta}});
+    case Kind::conductor: return named("ggx-conductor", {{"eta", f.eta}, {"kappa", f.kappa}});
+  }
+  unreachable();
 }
 
 // A metal's F82-tint from its complex index: F0 = F(1), tint = F(1/7) / Schlick(1/7) (clamped to
@@ -125,8 +138,7 @@ Verdict verdict(const VerdictSettings& s) {
         const walk::Albedo& w = walked[k + 1];
         const Channel& f = s.fresnels[k].channel;
         CompensationInputs in{e, e_avg, w.order[0].value, f(mu), f(1.0), f_avg[k]};
-        if (ggx_schlick(s.distribution, f))
-          in.shipped = analysis::albedo(make_model("ggx+ms", {{"alpha", alpha}, {"f0", f.f0}}), std::acos(mu)).value;
+        in.shipped = analysis::albedo(ggx_with(f, alpha, "+ms"), std::acos(mu)).value;
         const double truth = w.total.value;
         std::vector<double> row{alpha, mu, double(k), in.f_mu, in.f0, in.f_avg, e, e_avg, w.order[0].value,
                                 w.order[0].error, w.multiple.value, w.multiple.error};

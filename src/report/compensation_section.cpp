@@ -108,47 +108,47 @@ std::string grazing_chart(Context& context, const queries::Verdict& v, const que
 constexpr const char* kFurnaceModels[] = {"ggx", "ggx+kulla-conty", "ggx+turquin-f0", "ggx+turquin-f",
                                           "ggx+turquin-favg", "ggx+cycles", "ggx+ms"};
 
-/// The sphere of `id` at α = 1 with F0 = `f0` in the white furnace: specular 1, no diffuse, no
-/// ambient, lit by radiance 1 from every direction. What it shows is its albedo at each pixel's
-/// viewing angle.
-render::Image furnace_sphere(const std::string& id, double f0, int size, int samples) {
-  const Model model = make_model(id, {{"alpha", 1.0}, {"f0", f0}});
+/// The sphere of `id` at `params` in the white furnace: specular 1, no diffuse, no ambient, lit by
+/// radiance 1 from every direction. What it shows is its albedo at each pixel's viewing angle.
+render::Image furnace_sphere(const std::string& id, const ParamValues& params, int size, int samples) {
+  const Model model = make_model(id, params);
   const render::Scene scene =
       render::make_scene(model, {.lights = std::vector<render::Light>{}, .diffuse = render::Rgb{0, 0, 0},
                                  .specular = render::Rgb{1, 1, 1}, .ambient = render::Rgb{0, 0, 0}});
   return render::render_environment(scene, render::Environment::uniform({1, 1, 1}), {size, size}, {samples, 1});
 }
 
-/// The coloured furnace: one render per channel with that channel's F0 (GGX's Schlick Fresnel is
-/// one channel), put together as R, G and B.
-render::Image coloured_furnace_sphere(const std::string& id, const render::Rgb& f0, int size, int samples) {
+/// Gold as the verdict has it: F82-tint per R, G, B channel from its complex index.
+std::vector<fresnel::Channel> gold_channels() {
+  std::vector<fresnel::Channel> gold;
+  for (const auto& f : queries::verdict_fresnels())
+    if (f.family == "gold") gold.push_back(f.channel);
+  return gold;
+}
+
+/// The coloured furnace of `id` (a `ggx-f82` model with a suffix) at α = 1: one render per channel
+/// with that channel's F0 and tint, put together as R, G and B (`specula render -p f0=R,G,B`).
+render::Image coloured_furnace_sphere(const std::string& id, const std::vector<fresnel::Channel>& channels, int size,
+                                      int samples) {
   render::Image image(size, size);
-  const double channel_f0[3] = {f0.r, f0.g, f0.b};
-  for (int c = 0; c < 3; ++c) {
-    const render::Image grey = furnace_sphere(id, channel_f0[c], size, samples);
+  for (std::size_t c = 0; c < 3; ++c) {
+    const ParamValues params{{"alpha", 1.0}, {"f0", channels[c].f0}, {"tint", channels[c].tint}};
+    const render::Image grey = furnace_sphere(id, params, size, samples);
     for (std::size_t k = c; k < image.samples().size(); k += 3) image.samples()[k] = grey.samples()[k];
   }
   return image;
 }
 
-/// Gold's F0 per channel, from the verdict's F82-tint channels of its complex index.
-render::Rgb gold_f0() {
-  double f0[3] = {1, 1, 1};
-  int c = 0;
-  for (const auto& f : queries::verdict_fresnels())
-    if (f.family == "gold" && c < 3) f0[c++] = f.channel(1.0);
-  return {f0[0], f0[1], f0[2]};
-}
-
 std::string furnace_figure(Context& context) {
   const int size = context.quick() ? 96 : 160, samples = context.quick() ? 8 : 64;
-  const render::Rgb gold = gold_f0();
+  const std::vector<fresnel::Channel> gold = gold_channels();
   std::vector<render::LabelledImage> white, coloured;
   for (const std::string id : kFurnaceModels) {
     const std::string_view base = compensated_base_id(id);
-    const std::string label = base.empty() ? "none" : id.substr(base.size() + 1);  // the suffix, without its '+'
-    white.push_back({furnace_sphere(id, 1, size, samples), label});
-    coloured.push_back({coloured_furnace_sphere(id, gold, size, samples), label});
+    const std::string suffix = base.empty() ? "" : id.substr(base.size());
+    const std::string label = base.empty() ? "none" : suffix.substr(1);  // the suffix, without its '+'
+    white.push_back({furnace_sphere(id, {{"alpha", 1.0}, {"f0", 1.0}}, size, samples), label});
+    coloured.push_back({coloured_furnace_sphere("ggx-f82" + suffix, gold, size, samples), label});
   }
   const std::string models = fmt::format("{}", fmt::join(kFurnaceModels, ", "));
   return panel_figure(context, "furnace-white", white, std::nullopt,
@@ -162,15 +162,17 @@ std::string furnace_figure(Context& context) {
                                   "--out furnace.png   # each of: {2}",
                                   size, samples, models)) +
          panel_figure(context, "furnace-gold", coloured, std::nullopt,
-                      fmt::format("The same spheres with gold's F0 per channel ({:.3f}, {:.3f}, {:.3f}; Schlick's F), "
-                                  "one render per channel: what each compensation gives back of the coloured light "
-                                  "that single scattering loses. <code>ggx+ms</code> (last) is the random walk's own "
-                                  "multiple scattering; a compensation whose sphere is brighter or paler than it "
-                                  "gives back too much or too little (the verdict's table above, in numbers).",
-                                  gold.r, gold.g, gold.b),
-                      fmt::format("specula render --model ggx+cycles -p alpha=1 -p f0={:.3f} --env white --size {}x{} "
-                                  "--samples {} --out red.png   # a channel at a time",
-                                  gold.r, size, size, samples));
+                      fmt::format("The same spheres in gold: <code>ggx-f82</code> with gold's F82-tint per channel (F0 = {:.3f}, "
+                                  "{:.3f}, {:.3f}; tint = {:.3f}, {:.3f}, {:.3f}, from its complex index), one render "
+                                  "per channel: what each compensation gives back of the coloured light that single "
+                                  "scattering loses. <code>+ms</code> (last) is the random walk's own multiple "
+                                  "scattering; a compensation whose sphere is brighter or paler than it gives back "
+                                  "too much or too little (the verdict's table above, in numbers).",
+                                  gold[0].f0, gold[1].f0, gold[2].f0, gold[0].tint, gold[1].tint, gold[2].tint),
+                      fmt::format("specula render --model ggx-f82+cycles -p alpha=1 -p f0={:.3f},{:.3f},{:.3f} "
+                                  "-p tint={:.3f},{:.3f},{:.3f} --env white --size {}x{} --samples {} --out gold.png",
+                                  gold[0].f0, gold[1].f0, gold[2].f0, gold[0].tint, gold[1].tint, gold[2].tint, size,
+                                  size, samples));
 }
 
 }  // namespace
@@ -184,11 +186,11 @@ Section compensation_section(Context& context) {
   for (const auto& sum : v.summary)
     if (std::find(families.begin(), families.end(), sum.family) == families.end()) families.push_back(sum.family);
   double best_worst = 0;  // the largest, over families, of the best published compensation's max error
-  double shipped = NAN;   // ggx+ms's max error on the cells it applies to
+  double shipped = 0;     // +ms's max error over every family's cells
   for (const auto& f : families) {
     double best = INFINITY;
     for (const auto& sum : v.summary)
-      if (sum.family == f && sum.compensation == Compensation::shipped && sum.cells > 0) shipped = sum.max_error;
+      if (sum.family == f && sum.compensation == Compensation::shipped && sum.cells > 0) shipped = std::max(shipped, sum.max_error);
       else if (sum.family == f && sum.compensation != Compensation::none) best = std::min(best, sum.max_error);
     best_worst = std::max(best_worst, best);
   }
@@ -208,9 +210,10 @@ Section compensation_section(Context& context) {
   html += verdict_table(v, families);
   html += fmt::format(
       "<p>The best published compensation of each family still misses the walk by up to {} somewhere on the grid: "
-      "none is within 0.01 everywhere. <code>ggx+ms</code>, what specula ships for GGX with Schlick's Fresnel, "
-      "gives back the walk's own multiply scattered albedo from a table (the walk at other points; its stated "
-      "error {}) and misses by {} on those cells. The compensations: <code>kulla-conty</code> multiplies f<sub>ms</sub> by "
+      "none is within 0.01 everywhere. <code>+ms</code>, what specula ships for GGX (<code>ggx+ms</code>, "
+      "<code>ggx-f82+ms</code>, <code>ggx-dielectric+ms</code>, …), gives back the walk's own multiply scattered "
+      "albedo from a table (the walk at other points; its stated error {}) at Schlick's F0, or for another Fresnel "
+      "at the F0 of the same F<sub>avg</sub>, and misses by {} at most over every family's cells. The compensations: <code>kulla-conty</code> multiplies f<sub>ms</sub> by "
       "F<sub>avg</sub>² E<sub>avg</sub> / (1 − F<sub>avg</sub>(1 − E<sub>avg</sub>)); the Turquin forms scale "
       "f<sub>F</sub> by 1 + F (1 − E)/E with F0, F(θ) or F<sub>avg</sub>; <code>cycles</code> by 1 + "
       "F<sub>ms</sub>(1 − E)/E; <code>walk-fit</code>, derived from the walk's cells, keeps Kulla & Conty's series "

@@ -329,11 +329,12 @@ ModelDesc describe(const FullBrdf& brdf) {
         } else if constexpr (std::is_same_v<B, CookTorrance>) {
           return {Kind::cook_torrance, b.m, b.f0};
         } else if constexpr (std::is_same_v<B, Ggx>) {
-          return {Kind::ggx, b.alpha, b.f0};
+          return {Kind::ggx, b.alpha, b.fresnel.f0};  // has_kernel: Schlick's F0 alone
         } else if constexpr (std::is_same_v<B, Lambert>) {
           return {Kind::lambert, b.rho, 0};
         } else {
-          static_assert(std::is_same_v<B, FormulaBrdf>, "every full BRDF has a kernel or a formula");
+          static_assert(std::is_same_v<B, FormulaBrdf> || std::is_same_v<B, Beckmann>,
+                        "every full BRDF has a kernel, a formula or the scalar path (has_kernel)");
           return {Kind::formula, 0, 0};
         }
       },
@@ -388,6 +389,25 @@ void formula_brdf_batch(const FormulaBrdf& brdf, const DirectionBatch& dirs, std
   }
 }
 
+/// True where a kernel evaluates the BRDF. GGX with another Fresnel than Schlick's F0 (F82, the
+/// exact dielectric and conductor) and Beckmann (erf) run the scalar formula per direction
+/// (scalar_brdf_batch), and a formula its own program (formula_brdf_batch).
+bool has_kernel(const FullBrdf& brdf) {
+  if (const auto* ggx = std::get_if<Ggx>(&brdf)) return ggx->fresnel.is_schlick_f0();
+  return !std::holds_alternative<Beckmann>(brdf) && !std::holds_alternative<FormulaBrdf>(brdf);
+}
+
+/// The scalar formula at each direction: exactly Model's f.
+void scalar_brdf_batch(const FullBrdf& brdf, const DirectionBatch& dirs, std::size_t count, double* out) {
+  std::visit(
+      [&](const auto& f) {
+        for (std::size_t i = 0; i < count; ++i)
+          out[i] = f(Vec3{dirs.nx[i], dirs.ny[i], dirs.nz[i]}, Vec3{dirs.lx[i], dirs.ly[i], dirs.lz[i]},
+                     Vec3{dirs.vx[i], dirs.vy[i], dirs.vz[i]});
+      },
+      brdf);
+}
+
 /// M+ms: M's batch, then the multiple-scattering lobe of the table (the scalar arithmetic of
 /// Model's f_M + f_ms, on the same dot products).
 void compensated_batch(const Compensated& model, Tier tier, const DirectionBatch& dirs, std::size_t count, double* out) {
@@ -410,12 +430,13 @@ void eval_batch(const Model& model, Tier tier, const DirectionBatch& dirs, std::
     return compensated_batch(*compensated, tier, dirs, count, out.data());
   if (const auto* formula = std::get_if<FormulaBrdf>(&model.brdf()))
     return formula_brdf_batch(*formula, dirs, count, out.data());
+  if (!has_kernel(model.brdf())) return scalar_brdf_batch(model.brdf(), dirs, count, out.data());
   HWY_DYNAMIC_DISPATCH(FullBrdfBatch)(dirs, describe(model.brdf()), tier == Tier::fast, count, out.data());
 }
 
 namespace {
 
-/// The models without a fused row path (M+ms, formula BRDFs): the rows become columns a chunk at
+/// The models without a fused row path (M+ms, formula BRDFs, the scalar ones): the rows become columns a chunk at
 /// a time, each chunk evaluated as columns.
 void rows_through_columns(const Model& model, Tier tier, const DirectionRows& rows, std::size_t count, double* out) {
   constexpr std::size_t kRowsChunk = 1024;  // 9 columns of 8 KiB: L1 and L2 hold them
@@ -445,7 +466,7 @@ void eval_batch(const Model& model, Tier tier, const DirectionRows& rows, std::s
       const auto part = [&](std::span<const double> s) { return s.empty() ? s : s.subspan(3 * first, 3 * n); };
       HWY_DYNAMIC_DISPATCH(FormCosinesRows)({part(rows.n), part(rows.l), part(rows.v)}, model.form() == Form::rv, n, c);
     });
-  if (model.compensated() || std::holds_alternative<FormulaBrdf>(model.brdf()))
+  if (model.compensated() || !has_kernel(model.brdf()))
     return rows_through_columns(model, tier, rows, count, out.data());
   HWY_DYNAMIC_DISPATCH(FullBrdfRows)(rows, describe(model.brdf()), tier == Tier::fast, count, out.data());
 }

@@ -138,6 +138,15 @@ TEST(Albedo, GrazingCookTorranceCostsAFewTimesGgx) {
   }
 }
 
+// Total internal reflection bends F(V·H) at the critical cosine: the cubature splits there
+// (analysis::fresnel_kinks). The reference is a second method, a 3000 × 3000 Gauss-Legendre product
+// rule over (cos θ_o, φ_o) in NumPy that does not split (0.36517776 at 2000², 0.36517788 at 3000²:
+// good to about 2e-7).
+TEST(Albedo, TotalInternalReflectionsKinkIsResolved) {
+  const Model glass_inside = make_model("ggx-dielectric", {{"alpha", 0.6}, {"eta", 0.66}});
+  EXPECT_NEAR(albedo(glass_inside, 60 * kDegree).value, 0.36517788, 5e-7);
+}
+
 // A negative formula has no peak whose half maximum gives a width (issue 23: 1e-6, and the
 // sampling check's cubature refined toward it without end); a positive one still has its own.
 TEST(Albedo, AFormulaThatIsNotPositiveAtItsPeakHasNoNarrowWidth) {

@@ -4,6 +4,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
 #include <set>
 
@@ -19,8 +20,9 @@ Model model_from_row(const testing::ReferenceRow& row) {
   const std::string id = row.text("model");
   const ModelInfo* info = find_model(id);
   if (!info) throw std::runtime_error("unknown model " + id);
-  ParamValues params{{std::string(info->params[0].name), row.number("p1")}};
-  if (info->params.size() > 1) params[std::string(info->params[1].name)] = row.number("p2");
+  ParamValues params;  // p1..p4: the model's parameters in order
+  for (std::size_t i = 0; i < info->params.size(); ++i)
+    params[std::string(info->params[i].name)] = row.number(fmt::format("p{}", i + 1));
   return make_model(id, params);
 }
 

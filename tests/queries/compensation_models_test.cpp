@@ -8,9 +8,11 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "specula/analysis/albedo.h"
 #include "specula/analysis/check.h"
+#include "specula/analysis/fresnel.h"
 #include "specula/analysis/monte_carlo.h"
 #include "specula/brdf/fresnel.h"
 #include "specula/catalogue/catalogue.h"
@@ -86,6 +88,62 @@ TEST(CompensationModels, AnotherSuffixsAlbedoMissesTheFormula) {
                 10 * tolerance(*model.compensated()))
           << s.suffix << " against " << other.suffix;
     }
+}
+
+// Every Fresnel kind of a microfacet model (families/fresnel.h) is what the suffixes read: the
+// same formula, with F(μ), F0 and F_avg of the model's own channel, and the table of its family's
+// F = 1 model (GGX's or Beckmann's at F0 = 1) as the white table.
+struct FresnelCase {
+  std::string id;
+  ParamValues params;
+  fresnel::Channel channel;
+  std::string white;  ///< the family's model whose F0 = 1 is F ≡ 1
+};
+
+std::vector<FresnelCase> fresnel_cases() {
+  using fresnel::Kind;
+  return {{"ggx-f82", {{"alpha", 0.6}, {"f0", 0.9}, {"tint", 0.7}}, {.kind = Kind::f82_tint, .f0 = 0.9, .tint = 0.7}, "ggx"},
+          {"ggx-dielectric", {{"alpha", 0.6}, {"eta", 1.5}}, {.kind = Kind::dielectric, .eta = 1.5}, "ggx"},
+          {"ggx-conductor", {{"alpha", 0.6}, {"eta", 0.2}, {"kappa", 3.1}}, {.kind = Kind::conductor, .eta = 0.2, .kappa = 3.1}, "ggx"},
+          {"ggx-schlick", {{"alpha", 0.6}, {"f0", 0.3}, {"f90", 0.8}, {"exponent", 3}},
+           {.kind = Kind::schlick, .f0 = 0.3, .f90 = 0.8, .exponent = 3}, "ggx"},
+          {"beckmann-conductor", {{"alpha", 0.6}, {"eta", 1.1}, {"kappa", 2.5}},
+           {.kind = Kind::conductor, .eta = 1.1, .kappa = 2.5}, "beckmann"},
+          {"beckmann", {{"alpha", 0.6}, {"f0", 0.04}}, {.kind = Kind::schlick, .f0 = 0.04}, "beckmann"}};
+}
+
+TEST(CompensationModels, EveryFresnelKindIsTheModelsOwn) {
+  for (const FresnelCase& c : fresnel_cases()) {
+    const double f_avg = analysis::fresnel_average(c.channel).value;
+    const Model white = make_model(c.white, {{"alpha", c.params.at("alpha")}, {"f0", 1}});
+    for (const Named& s : kSchemes) {
+      if (c.id == "beckmann" && s.suffix == "+turquin-f0") continue;  // as ggx's: covered above
+      const Model model = make_model(c.id + s.suffix, c.params);
+      const Compensated& parts = *model.compensated();
+      for (const double theta : {0.0, 1.0, 1.4}) {
+        const double mu = std::cos(theta);
+        EXPECT_NEAR(parts.table->at(mu), analysis::albedo(white, theta).value, 1.5 * parts.table->interpolation_error)
+            << model.id() << " theta " << theta;
+        const CompensationInputs in{parts.table->at(mu), parts.table->e_avg,
+                                    analysis::albedo(make_model(c.id, c.params), theta).value, c.channel(mu),
+                                    c.channel(1.0), f_avg};
+        EXPECT_NEAR(analysis::albedo(model, theta).value, compensated_albedo(s.formula, in), tolerance(parts))
+            << model.id() << " theta " << theta;
+      }
+    }
+  }
+}
+
+// The control: the conductor's model read with the dielectric's channel of the same η misses.
+TEST(CompensationModels, AnotherChannelMissesTheFresnelKindsFormula) {
+  const ParamValues params{{"alpha", 0.6}, {"eta", 0.2}, {"kappa", 3.1}};
+  const Model model = make_model("ggx-conductor+turquin-f", params);
+  const fresnel::Channel wrong{.kind = fresnel::Kind::dielectric, .eta = 0.2};
+  const CompensationInputs in{model.compensated()->table->at(0.5), model.compensated()->table->e_avg,
+                              analysis::albedo(make_model("ggx-conductor", params), std::acos(0.5)).value, wrong(0.5),
+                              wrong(1.0), analysis::fresnel_average(wrong).value};
+  EXPECT_GT(std::abs(analysis::albedo(model, std::acos(0.5)).value - compensated_albedo(Compensation::turquin_fresnel, in)),
+            1e-3);
 }
 
 TEST(CompensationModels, AModelWithoutAFresnelGetsTheWhiteCompensation) {

@@ -26,12 +26,13 @@ Files written (CSV, header line first, comma separated, no quoting):
       log rv (E1 form), against an independent quadrature in c for n <= 1000, and against the
       check values of docs/math.md section 4.
 
-  brdfs.csv          model,p1,p2,lx,ly,lz,vx,vy,vz,value
-      Full BRDFs (ward, ward-duer, ward-gmd, cook-torrance-1982, cook-torrance, ggx, lambert)
+  brdfs.csv          model,p1,p2,p3,p4,lx,ly,lz,vx,vy,vz,value (p3, p4: 0.0 past a model's parameters)
+      Full BRDFs (ward, ward-duer, ward-gmd, cook-torrance-1982, cook-torrance, lambert, and ggx and
+      beckmann with each Fresnel kind: -schlick, -f82, -dielectric, -conductor)
       with N = (0,0,1) and L, V built in doubles from angles; the double components are used
       as given (not renormalized).
 
-Number formats: every input (n, s, c, p1, p2, vector components) is a Python float written with
+Number formats: every input (n, s, c, p1..p4, vector components) is a Python float written with
 repr() (shortest round-trip form), and mpmath evaluates at exactly that double (mpf(float)).
 Outputs are printed with 20 significant digits by mpmath.nstr (plain decimal or 1.2e-5 style).
 
@@ -49,6 +50,8 @@ import time
 
 import mpmath
 from mpmath import mp, mpf
+
+import make_fresnel_reference as fr  # its Fresnel definitions; it sets 40 digits, so set ours after
 
 mp.dps = 50
 
@@ -338,6 +341,13 @@ def make_normalization(log):
 # File 3: brdfs.csv
 # ---------------------------------------------------------------------------------------------
 
+# Each model's parameter sets, in the registry's order (the roughness first).
+FRESNEL_PARAMS = {
+    "schlick": [(0.3, 0.04, 1.0, 5.0), (0.5, 0.2, 0.8, 3.0)],
+    "f82": [(0.3, 0.9, 0.8), (0.6, 0.5, 1.0)],
+    "dielectric": [(0.3, 1.5), (0.5, 0.66)],  # 0.66: from the denser side, total internal reflection
+    "conductor": [(0.3, 0.2, 3.1), (0.6, 1.5, 0.0)],
+}
 BRDF_PARAMS = [
     ("ward", [(0.05, 1.0), (0.2, 1.0), (0.5, 0.7)]),
     ("ward-duer", [(0.05, 1.0), (0.2, 1.0), (0.5, 0.7)]),
@@ -346,7 +356,10 @@ BRDF_PARAMS = [
     ("cook-torrance", [(0.1, 1.0), (0.3, 0.04), (0.6, 1.0)]),
     ("ggx", [(0.05, 1.0), (0.3, 0.04), (0.8, 1.0)]),
     ("lambert", [(1.0, 0.0), (0.5, 0.0)]),
-]
+    ("beckmann", [(0.05, 1.0), (0.3, 0.04), (0.8, 1.0)]),
+] + [("%s-%s" % (family, kind), params) for family in ("ggx", "beckmann")
+     for kind, params in FRESNEL_PARAMS.items()]
+PARAM_COLUMNS = 4  # p1..p4: a model's parameters, 0.0 past its own
 THETA_L = [0.0, 30.0, 60.0, 85.0]
 THETA_V = [0.0, 20.0, 45.0, 80.0, 89.0]
 PHI_V = [0.0, 90.0, 180.0]
@@ -370,10 +383,25 @@ def directions():
     return out
 
 
-def brdf(model, p1, p2, L, V):
+def fresnel(kind, c, p):
+    """The Fresnel of `kind` at cosine c with parameters p (after the roughness), from
+    make_fresnel_reference.py's definitions (complex amplitudes for the dielectric and conductor)."""
+    if kind == "schlick":
+        return fr.schlick(c, p[0], p[1], p[2])
+    if kind == "f82":
+        return fr.f82(c, p[0], p[1])
+    if kind == "dielectric":
+        return fr.dielectric(c, p[0])
+    if kind == "conductor":
+        return fr.conductor(c, p[0], p[1])
+    return p[0] + (1 - p[0]) * (1 - c) ** 5  # Schlick's F0
+
+
+def brdf(model, params, L, V):
     L = [mpf(x) for x in L]
     V = [mpf(x) for x in V]
-    p1, p2 = mpf(p1), mpf(p2)
+    params = [mpf(x) for x in params]
+    p1, p2 = params[0], params[1] if len(params) > 1 else mpf(0)
     NL, NV = L[2], V[2]
     if NL <= 0 or NV <= 0:
         return mpf(0)
@@ -416,37 +444,45 @@ def brdf(model, p1, p2, L, V):
             return D * F * G / (mpmath.pi * NL * NV)
         D = mpmath.exp(-tan2d / m ** 2) / (mpmath.pi * m ** 2 * cos4)
         return D * schlick_F(f0) * G / (4 * NL * NV)
-    if model == "ggx":
-        alpha, f0 = p1, p2
-        a2 = alpha ** 2
-        D = a2 / (mpmath.pi * (NH ** 2 * (a2 - 1) + 1) ** 2)
+    family, _, kind = model.partition("-")
+    if family in ("ggx", "beckmann"):
+        a2 = p1 ** 2
+        F = fresnel(kind, VH, params[1:])
+        if family == "ggx":
+            D = a2 / (mpmath.pi * (NH ** 2 * (a2 - 1) + 1) ** 2)
 
-        def Lam(z):
-            t2 = (1 - z ** 2) / z ** 2
-            return (-1 + mpmath.sqrt(1 + a2 * t2)) / 2
-        G = 1 / (1 + Lam(NL) + Lam(NV))
-        return D * schlick_F(f0) * G / (4 * NL * NV)
+            def Lam(z):
+                t2 = (1 - z ** 2) / z ** 2
+                return (-1 + mpmath.sqrt(1 + a2 * t2)) / 2
+        else:
+            D = mpmath.exp(-tan2d / a2) / (mpmath.pi * a2 * NH ** 4)
+
+            def Lam(z):  # Smith's Beckmann Lambda, a = cot(theta) / alpha
+                a = z / (p1 * mpmath.sqrt(1 - z ** 2)) if z < 1 else mpmath.inf
+                return (mpmath.exp(-a ** 2) / (a * mpmath.sqrt(mpmath.pi)) - mpmath.erfc(a)) / 2
+        return D * F / ((1 + Lam(NL) + Lam(NV)) * 4 * NL * NV)
     raise ValueError(model)
 
 
 def make_brdfs():
     rows = []
     dirs = directions()
-    for model, params in BRDF_PARAMS:
-        for p1, p2 in params:
+    for model, sets in BRDF_PARAMS:
+        for params in sets:
+            columns = list(params) + [0.0] * (PARAM_COLUMNS - len(params))
             for L, V in dirs:
-                v = brdf(model, p1, p2, L, V)
-                assert v >= 0, (model, p1, p2, L, V, v)
-                rows.append([model, fin(p1), fin(p2)] + [fin(x) for x in L] + [fin(x) for x in V]
+                v = brdf(model, params, L, V)
+                assert v >= 0, (model, params, L, V, v)
+                rows.append([model] + [fin(p) for p in columns] + [fin(x) for x in L] + [fin(x) for x in V]
                             + [fout(v, "brdfs.csv")])
     # Helmholtz reciprocity of the formulas (swap L and V): exact in math for unit vectors; here
     # ~1e-16, since the double vectors are not exactly unit (V.H != L.H in the last bits).
-    for model, params in BRDF_PARAMS:
-        for p1, p2 in params:
+    for model, sets in BRDF_PARAMS:
+        for params in sets:
             for L, V in dirs[:20]:
-                a, b = brdf(model, p1, p2, L, V), brdf(model, p1, p2, V, L)
+                a, b = brdf(model, params, L, V), brdf(model, params, V, L)
                 assert abs(a - b) <= mpf(10) ** -13 * max(abs(a), mpf(10) ** -300), (model, L, V)
-    return ["model,p1,p2,lx,ly,lz,vx,vy,vz,value"] + [",".join(r) for r in rows]
+    return ["model,p1,p2,p3,p4,lx,ly,lz,vx,vy,vz,value"] + [",".join(r) for r in rows]
 
 
 def write(name, lines):
@@ -462,8 +498,11 @@ def main():
     def log(msg):
         print("[%6.1fs] %s" % (time.time() - t0, msg), flush=True)
 
+    only = sys.argv[1:]  # table names to write (default: all)
     for name, make in [("lobes.csv", make_lobes), ("brdfs.csv", make_brdfs),
                        ("normalization.csv", lambda: make_normalization(log))]:
+        if only and name not in only:
+            continue
         lines = make()
         path = write(name, lines)
         log("wrote %s: %d rows (%d values below DBL_MIN written as 0.0)"

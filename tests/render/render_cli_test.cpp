@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <string>
@@ -42,6 +43,38 @@ std::string metadata_value(const Metadata& metadata, const std::string& key) {
   for (const auto& [k, v] : metadata)
     if (k == key) return v;
   return "<missing " + key + ">";
+}
+
+// A parameter with three values is a coloured material: each channel is the render of the model
+// at that channel's values (the control: channel R is not the render at G's values).
+TEST(RenderCli, ThreeValuesOfAParameterRenderEachChannelWithItsOwn) {
+  TempDir dir;
+  const std::string common = "--model ggx-conductor -p alpha=0.4 --size 12x12 --light dir:1,1,2 --out ";
+  const auto render = [&](const std::string& params, const std::string& name) {
+    const RenderRun run = run_cli(dir, params + " " + common + "'" + (dir / name).string() + "'");
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return read_exr(dir / name);
+  };
+  const ImageFile gold = render("-p eta=0.143,0.374,1.442 -p kappa=3.98,2.38,1.60", "gold.exr");
+  EXPECT_EQ(metadata_value(gold.metadata, "parameters"), "eta=0.143,0.374,1.442; kappa=3.98,2.38,1.60; alpha=0.4");
+  const ImageFile channel[] = {render("-p eta=0.143 -p kappa=3.98", "r.exr"), render("-p eta=0.374 -p kappa=2.38", "g.exr"),
+                               render("-p eta=1.442 -p kappa=1.60", "b.exr")};
+  double lit = 0, r_against_g = 0;
+  for (std::size_t k = 0; k < gold.image.samples().size(); ++k) {
+    EXPECT_EQ(gold.image.samples()[k], channel[k % 3].image.samples()[k]) << k;
+    lit += gold.image.samples()[k];
+    if (k % 3 == 0) r_against_g += std::abs(gold.image.samples()[k] - channel[1].image.samples()[k]);
+  }
+  EXPECT_GT(lit, 0);
+  EXPECT_GT(r_against_g, 1e-3);
+}
+
+TEST(RenderCli, AListOfOtherThanThreeValuesIsRefused) {
+  TempDir dir;
+  const RenderRun run = run_cli(dir, "--model ggx-conductor -p eta=0.1,0.2 --size 8x8 --out '" + (dir / "x.png").string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("--param 'eta=0.1,0.2': give one value, or three (R,G,B)"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
 TEST(RenderCli, WritesAPngWithItsSettingsAsText) {

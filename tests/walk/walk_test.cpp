@@ -233,6 +233,33 @@ TEST(Walk, TheQuadratureAgreesWithSpeculasCubatureForGgx) {
       }
 }
 
+TEST(Walk, TheQuadratureAgreesWithSpeculasCubatureForEveryFresnelModel) {
+  // The same for the models whose Fresnel is another kind, and for Beckmann-Smith, whose first
+  // bounce the walk's Beckmann microsurface is.
+  struct Case {
+    std::string id;
+    ParamValues params;
+    Distribution distribution;
+    Channel channel;
+  };
+  const Case cases[] = {
+      {"ggx-conductor", {{"alpha", 0.3}, {"eta", 0.2}, {"kappa", 3.1}}, Distribution::ggx,
+       Channel{.kind = Kind::conductor, .eta = 0.2, .kappa = 3.1}},
+      {"ggx-dielectric", {{"alpha", 0.6}, {"eta", 1.5}}, Distribution::ggx, Channel{.kind = Kind::dielectric, .eta = 1.5}},
+      {"ggx-f82", {{"alpha", 0.6}, {"f0", 0.8}, {"tint", 0.5}}, Distribution::ggx,
+       Channel{.kind = Kind::f82_tint, .f0 = 0.8, .tint = 0.5}},
+      {"beckmann", {{"alpha", 0.05}, {"f0", 1}}, Distribution::beckmann, kOne},
+      {"beckmann", {{"alpha", 0.5}, {"f0", 0.04}}, Distribution::beckmann, kSchlick004},
+      {"beckmann-conductor", {{"alpha", 1.0}, {"eta", 1.5}, {"kappa", 0.5}}, Distribution::beckmann,
+       Channel{.kind = Kind::conductor, .eta = 1.5, .kappa = 0.5}},
+  };
+  for (const Case& c : cases)
+    for (double mu : {0.1, 0.5, 1.0})
+      EXPECT_NEAR(single_scattering(c.distribution, c.params.at("alpha"), mu, c.channel),
+                  analysis::albedo(make_model(c.id, c.params), std::acos(mu)).value, 1e-7)
+          << c.id << " " << c.params.at("alpha") << " " << mu;
+}
+
 TEST(Walk, AWrongMaskingFunctionMissesTheSingleScatteringAlbedo) {
   Options options = paths(2 * kMinPaths);
   options.faults.masking_alpha_scale = 1.25;

@@ -45,6 +45,13 @@ void clear_energy_tables();
 /// midway between its nodes. α ∈ [1e-3, 1] and F0 ∈ [0, 1] (clamped to them).
 EnergyTable ggx_walk_table(double alpha, double f0);
 
+/// The F0 of ggx_walk_table that stands for a GGX model with Fresnel `f`: `f`'s own F0 for
+/// Schlick's F0 alone (F90 = 1, p = 5); for any other kind, the Schlick F0 with the same F_avg,
+/// (21 F_avg − 1)/20 clamped to [0, 1] (F_avg = F0 + (1 − F0)/21). The walk's E_ms follows F_avg
+/// closely (docs/energy-compensation.md, "Every Fresnel kind": the dielectric η = 1.5 at
+/// F0 = 0.0466 within 10⁻⁴, metals within the verdict's figures).
+double walk_equivalent_f0(const fresnel::Channel& f);
+
 /// The documented size of a table (docs/robustness.md, measured): 65536 cells of Cook-Torrance,
 /// the costliest built-in albedo, take about a minute on two idle cores; an E_avg costs 100-400
 /// cells, so at most 256 of them. Every interface (specula lut, import specula) keeps to these.

@@ -20,7 +20,8 @@ namespace specula::fresnel {
 template <std::floating_point T>
 T schlick(T c, T f0, T f90 = T(1), T p = T(5)) noexcept {
   const T m = std::clamp(T(1) - c, T(0), T(1));
-  const T mp = p == T(5) ? m * m * m * m * m : std::pow(m, p);
+  const T m2 = m * m;
+  const T mp = p == T(5) ? m2 * m2 * m : std::pow(m, p);
   return f0 + (f90 - f0) * mp;
 }
 
@@ -83,6 +84,16 @@ struct Channel {
   double f0 = 1, f90 = 1, exponent = 5;  ///< schlick; f82_tint: f0
   double tint = 1;                       ///< f82_tint: F(1/7) over Schlick's
   double eta = 1.5, kappa = 0;           ///< dielectric: eta; conductor: eta + i kappa
+
+  /// True for Schlick's F0 alone (F90 = 1, exponent 5): the Fresnel SIMD kernels and shaders
+  /// take as one number.
+  bool is_schlick_f0() const noexcept { return kind == Kind::schlick && f90 == 1 && exponent == 5; }
+
+  /// True where F ≡ 1 at every angle: `one`, Schlick at F0 = F90 = 1, F82 at F0 = tint = 1.
+  bool is_one() const noexcept {
+    return kind == Kind::one || (kind == Kind::schlick && f0 == 1 && f90 == 1) ||
+           (kind == Kind::f82_tint && f0 == 1 && tint == 1);
+  }
 
   template <std::floating_point T>
   T operator()(T c) const noexcept {

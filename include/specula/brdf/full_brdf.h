@@ -3,6 +3,7 @@
 // holds one (models/model.h), unless it is a compensated model M+ms (models/compensated.h).
 #include <variant>
 
+#include "specula/brdf/beckmann.h"
 #include "specula/brdf/cook_torrance.h"
 #include "specula/brdf/formula_brdf.h"
 #include "specula/brdf/ggx.h"
@@ -11,6 +12,6 @@
 
 namespace specula {
 
-using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Lambert, FormulaBrdf>;
+using FullBrdf = std::variant<Ward, CookTorrance1982, CookTorrance, Ggx, Beckmann, Lambert, FormulaBrdf>;
 
 }  // namespace specula

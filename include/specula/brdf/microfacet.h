@@ -2,6 +2,7 @@
 // Shared pieces of microfacet BRDFs (docs/math.md §2, "Cook-Torrance parts").
 #include <algorithm>
 
+#include "specula/brdf/directions.h"
 #include "specula/brdf/vec3.h"
 
 namespace specula::microfacet {
@@ -33,6 +34,19 @@ constexpr T tan2_from_cos(T cos_theta) noexcept {
 template <std::floating_point T>
 T beckmann_unnormalized(const Inclination<T>& h, T m) noexcept {
   return std::exp(-h.tan2() / (m * m)) / (m * m * h.cos2 * h.cos2);
+}
+
+/// A Smith microfacet BRDF, D(H) F(V·H) G₂ / (4 (N·L)(N·V)) with the height-correlated
+/// G₂ = 1/(1 + Λ(N·L) + Λ(N·V)) (Heitz 2014, eq. 99); 0 below the horizon. `d` takes H's
+/// Inclination, `lambda` a direction's cosine, `fresnel` the cosine V·H.
+template <std::floating_point T, class D, class Lambda, class Fresnel>
+T smith_brdf(const Vec3T<T>& n, const Vec3T<T>& l, const Vec3T<T>& v, const D& d, const Lambda& lambda,
+             const Fresnel& fresnel) noexcept {
+  const T nl = dot(n, l), nv = dot(n, v);
+  if (nl <= T(0) || nv <= T(0)) return T(0);
+  const Vec3T<T> h = half_vector(l, v);
+  const T g = T(1) / (T(1) + lambda(nl) + lambda(nv));
+  return d(inclination(n, h)) * fresnel(dot(v, h)) * g / (T(4) * nl * nv);
 }
 
 /// Cook & Torrance's V-cavity masking-shadowing G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)).

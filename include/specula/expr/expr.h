@@ -4,6 +4,7 @@
 // mutate, and evaluated by a stack machine. parse() reads infix text:
 //   numbers 2, 0.5, .5, 1e-3, 2.5E+7   pi   variables (identifiers)   + - * / ^   unary -   ( )
 //   log log2 exp sqrt abs sin cos acos expm1 log1p asin (one argument)   pow min max (two arguments)
+//   the Fresnel calls, which parse() expands into those ops (fresnel_call below)
 // ^ is right-associative and binds tighter than unary minus (-2^2 = -4, 2^-1 = 0.5). Function names
 // are reserved. Evaluation follows IEEE semantics (x/0 is ±inf or nan, nothing throws);
 // min(a, b) = b < a ? b : a and max(a, b) = a < b ? b : a, exactly std::min / std::max.
@@ -66,6 +67,20 @@ std::string_view function_name(Op op);
 /// The op a call name denotes, if any.
 std::optional<Op> function_named(std::string_view name);
 
+/// The Fresnel reflectance at the cosine c as calls that parse() expands into the ops above
+/// (docs/fresnel.md, "In a formula"), so that every printer, the SIMD path and the shaders read
+/// them as any formula:
+///   fresnel_schlick(c, f0)             F0 + (1 − F0)(1 − c)⁵
+///   fresnel_schlick(c, f0, f90, p)     F0 + (F90 − F0)(1 − c)^p
+///   fresnel_f82(c, f0, tint)           Hoffman's F82-tint, clamped to [0, 1]
+///   fresnel_dielectric(c, eta)         the exact dielectric, η = n_t/n_i, total internal reflection
+///   fresnel_conductor(c, eta, kappa)   the exact conductor, index η + iκ (real arithmetic)
+/// True for their names, which are reserved as function names are.
+bool is_fresnel_call(std::string_view name);
+
+/// True for a name a variable, parameter or let may not take: a function's or a Fresnel call's.
+inline bool is_reserved_call(std::string_view name) { return function_named(name) || is_fresnel_call(name); }
+
 class Expression {
  public:
   /// Throws InvalidArgument unless `nodes` is a well-formed postfix expression: no operand
@@ -103,6 +118,11 @@ class ParseError : public InvalidArgument {
 /// identifiers are errors; otherwise its variables are the identifiers in order of first use.
 /// `pi` is the exact constant π unless `variables` has a variable called pi.
 Expression parse(std::string_view text, std::vector<std::string> variables = {});
+
+/// The postfix nodes of the Fresnel call `name` (is_fresnel_call) with `arguments`, each the nodes
+/// of one argument: its definition with the arguments in place of its variables. Throws
+/// InvalidArgument naming the call and the counts it takes when their number is wrong.
+std::vector<Node> expand_fresnel_call(std::string_view name, std::span<const std::vector<Node>> arguments);
 
 /// Parsing nests at most this deep (parentheses, unary minus, exponents).
 inline constexpr int kMaxNesting = 1000;

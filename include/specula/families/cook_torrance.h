@@ -4,11 +4,11 @@
 // stated here (families/family.h).
 #include "specula/brdf/cook_torrance.h"
 #include "specula/families/family.h"
+#include "specula/families/fresnel.h"
 #include "specula/families/ward.h"
 
 namespace specula::families {
 
-inline constexpr ParamDefinition kF0{"f0", 1, 0, 1, false, "Fresnel reflectance at normal incidence (1: F = 1)"};
 inline constexpr ParamDefinition kCookTorranceParams[] = {{"m", 0.3, 1e-3, 1, false, "RMS slope of the microfacets"},
                                                           kF0};
 

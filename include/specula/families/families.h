@@ -6,6 +6,7 @@
 #include <array>
 #include <string_view>
 
+#include "specula/families/beckmann.h"
 #include "specula/families/cook_torrance.h"
 #include "specula/families/family.h"
 #include "specula/families/gauss.h"
@@ -19,8 +20,8 @@
 
 namespace specula::families {
 
-inline constexpr std::array<const Family*, 9> kFamilies{&kPower,   &kSchlick, &kSchlickModified, &kGauss, &kLog,
-                                                        &kLambert, &kWard,    &kCookTorrance,    &kGgx};
+inline constexpr std::array<const Family*, 10> kFamilies{
+    &kPower, &kSchlick, &kSchlickModified, &kGauss, &kLog, &kLambert, &kWard, &kCookTorrance, &kGgx, &kBeckmann};
 
 /// The lobe families: the first of kFamilies, one per lobes::Lobe alternative but the last (a
 /// user's lobes::Formula, which is no built-in family).

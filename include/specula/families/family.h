@@ -59,6 +59,9 @@ struct ModelDefinition {
   std::string_view name;
   std::string_view summary;
   std::string_view source;  ///< where the formula comes from
+  /// The model's own parameters where they differ from the family's (a Fresnel of its own kind:
+  /// families/fresnel.h); empty: the family's.
+  std::span<const ParamDefinition> params = {};
   Form form = Form::rv;     ///< lobe models: the default form
   /// Lobe models: none (k = 1), exact (k = the family's closed_form in `form`), or formula (`coef`).
   Normalization normalization = Normalization::none;
@@ -135,5 +138,10 @@ struct Family {
   ReferenceRows reference = {};       ///< F(c): tests/reference/lobes.csv
   ReferenceRows coefficients = {};    ///< k by quadrature: tests/reference/normalization.csv
 };
+
+/// The parameters of `model`: its own, or else its family's.
+constexpr std::span<const ParamDefinition> params_of(const Family& family, const ModelDefinition& model) noexcept {
+  return model.params.empty() ? family.params : model.params;
+}
 
 }  // namespace specula::families

@@ -7,10 +7,11 @@
 //   f_ms(μ_i, μ_o) = (1 − E(μ_i))(1 − E(μ_o)) / (π (1 − E_avg)),
 // E(μ) the directional albedo of M with F = 1 at μ = cos θ and E_avg = 2∫₀¹ E(μ) μ dμ. Where F = 1
 // its albedo is E(μ_i) + (1 − E(μ_i)) = 1 at every angle, up to the error of the table that holds E.
-//   M+ms            what specula ships. For GGX with F0 < 1 the table holds 1 − E_ms, E_ms the
-//                   random walk's multiply scattered albedo with that Fresnel (EnergyTable::from_walk;
-//                   analysis::ggx_walk_table), F_ms = 1: f_ms gives back what the walk says comes
-//                   back. For any other model as M+kulla-conty.
+//   M+ms            what specula ships. For GGX with a Fresnel below 1 the table holds 1 − E_ms,
+//                   E_ms the random walk's multiply scattered albedo with Schlick's F0, or for
+//                   another Fresnel kind the F0 of the same F_avg (EnergyTable::from_walk;
+//                   analysis::ggx_walk_table, walk_equivalent_f0), F_ms = 1: f_ms gives back what
+//                   the walk says comes back. For any other model as M+kulla-conty.
 //   M+kulla-conty   the table of M with F = 1 and F_ms = F_avg² E_avg / (1 − F_avg (1 − E_avg))
 //                   (Kulla & Conty's appendix; OSL's libbsdl).
 // Scaled (Turquin 2019, "Practical multiple scattering compensation for microfacet models"):

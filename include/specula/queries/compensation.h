@@ -32,9 +32,9 @@ enum class Compensation {
   /// the first bounce's Fresnel a = max(E_F/E, F_avg), the later bounces' x = (E_F/E + F_avg)/2, and
   /// p = E_avg^0.7 the chance to leave after each of them.
   walk_fit,
-  /// What specula ships: `ggx+ms`, whose f_ms gives back the walk's own multiply scattered albedo
-  /// from a table (models/compensated.h). Its model has Schlick's Fresnel (F90 = 1, exponent 5), so
-  /// it is measured on those cells only; elsewhere its albedo is NaN and its cells are not counted.
+  /// What specula ships: `+ms` on the GGX model of the cell's Fresnel (`ggx`, `ggx-f82`,
+  /// `ggx-dielectric`, …), whose f_ms gives back the walk's own multiply scattered albedo from a
+  /// table, at Schlick's F0 of the same F_avg for the other kinds (models/compensated.h).
   shipped,
 };
 inline constexpr std::size_t kCompensationCount = 8;

@@ -1,0 +1,8 @@
+// Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces"; Heitz 2014; Cook & Torrance 1982 (the exact dielectric Fresnel) (docs/math.md 2 `beckmann`, docs/fresnel.md).
+#include "brdfs/beckmann.glsl"
+#include "brdfs/fresnel.glsl"
+// Beckmann-Smith with the dielectric Fresnel; 0 below the horizon.
+float specula_beckmann_dielectric(vec3 N, vec3 L, vec3 V, float alpha, float eta) {
+  float vh = dot(V, normalize(L + V));
+  return specula_beckmann_dg(N, L, V, alpha) * specula_fresnel_dielectric_eta(vh, eta);
+}
