@@ -1,19 +1,21 @@
 // specula lab: model cards with parameter sliders, the spheres (WebGL2, the server's shaders),
-// a difference view, plots, the model editor, the fit panel and the designer panel. Every number comes from the
+// a difference view, plots, the half/difference slices (slices.js), the model editor, the fit panel and the designer panel. Every number comes from the
 // server's API. A card holds a catalogue id or a definition of the editor's (sent as it is).
 import {api, column} from './api.js';
-import {readState, writeState} from './state.js';
+import {readState, writeState, defaultState} from './state.js';
 import {SphereView, drawDifference} from './spheres.js';
 import {linePlot, polarPlot, palette} from './plots.js';
 import {setupFit} from './fit.js';
 import {setupDesign} from './design.js';
 import {setupEditor} from './editor.js';
+import {fetchSlices, drawSlices} from './slices.js';
 
 const $ = (id) => document.getElementById(id);
-let catalogue = [], state = readState(), pending = null, generation = 0, edit = null;
+let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null;
 const views = [];
 
 const info = (id) => catalogue.find((m) => m.id === id);
+const defaultSlice = () => defaultState().slice;
 // A card's model as the catalogue lists one: its own definition's, or the catalogue's entry.
 const infoOf = (m) => m.definition
   ? {id: m.id, kind: m.definition.kind, params: Object.entries(m.definition.params).map(([name, p]) => ({name, ...p}))}
@@ -161,6 +163,33 @@ async function drawPlots(ticket) {
   document.querySelector('#coefficients tbody').replaceChildren(...coefficients.map(tableRow));
 }
 
+async function drawSliceViews(ticket) {
+  const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i]}));
+  const fetched = await fetchSlices(models, state.slice);
+  if (ticket !== generation) return;
+  slices = fetched;
+  drawSlices(slices, state.slice);
+}
+
+/// The slices' sliders: the angles ask the server again; exposure and gamma redraw what it gave.
+function setupSliceControls() {
+  for (const key of ['theta_h', 'theta_d', 'phi_d', 'exposure', 'gamma']) {
+    const id = `slice-${key.replace('_', '-')}`, input = $(id), output = $(`${id}-value`);
+    input.value = state.slice[key];
+    output.textContent = state.slice[key];
+    input.addEventListener('input', () => {
+      state.slice[key] = Number(input.value);
+      output.textContent = state.slice[key];
+      if ((key === 'exposure' || key === 'gamma') && slices) {
+        writeState(state);
+        drawSlices(slices, state.slice);
+      } else {
+        schedule();
+      }
+    });
+  }
+}
+
 function tableRow(cells) {
   const row = document.createElement('tr');
   for (const c of cells) row.append(Object.assign(document.createElement('td'), {textContent: typeof c === 'number' ? c.toPrecision(8) : c}));
@@ -186,7 +215,7 @@ async function update() {
   $('status').textContent = 'computing…';
   $('status').className = '';
   try {
-    await Promise.all([drawSpheres(ticket), drawPlots(ticket)]);
+    await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket)]);
     if (ticket !== generation) return;
     $('status').textContent = 'ready';
     document.body.dataset.renders = String(Number(document.body.dataset.renders || 0) + 1);
@@ -210,6 +239,8 @@ async function main() {
     if (state.models.length < 4) state.models.push({id: 'phong-normalized', params: {n: 50}});
     rebuild();
   });
+  state.slice = {...defaultSlice(), ...state.slice};
+  setupSliceControls();
   setupFit(catalogue.filter((m) => m.kind === 'lobe'));
   setupDesign(catalogue.filter((m) => m.kind === 'lobe'), applyDefinition);
   edit = setupEditor(applyDefinition);

@@ -191,6 +191,24 @@ io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const
   return table;
 }
 
+io::Table eval_half_difference(const Model& m, std::span<const double> theta_h_deg, std::span<const double> theta_d_deg,
+                               double phi_d_deg, Spelling spelling) {
+  require_degrees("phi_d", phi_d_deg, -360, 360, spelling);
+  for (const double t : theta_h_deg) require_degrees("theta_h", t, 0, 90, spelling);
+  for (const double t : theta_d_deg) require_degrees("theta_d", t, 0, 90, spelling);
+  const Vec3 n{0, 0, 1};
+  io::Table table{{"theta_h_deg", "theta_d_deg", "value"}, {}, model_meta(m)};
+  table.key_columns = 2;
+  table.meta.emplace_back("phi_d_deg", io::format_number(phi_d_deg));
+  for (const double theta_h : theta_h_deg)
+    for (const double theta_d : theta_d_deg) {
+      if (table.rows.size() % kRowsPerCheck == 0) check_interrupt();
+      const auto [l, v] = from_half_difference(radians(theta_h), radians(theta_d), radians(phi_d_deg));
+      table.rows.push_back({theta_h, theta_d, m(n, l, v)});
+    }
+  return table;
+}
+
 io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
   require_no_n(q.params, spelling);
   if (!(q.step >= 0.01 && q.step <= 45))

@@ -46,6 +46,17 @@ std::string eval_endpoint(std::string_view body, const Limits& limits) {
   return io::to_json(queries::eval_at_directions(m, theta_i, theta_o, f.number_or("phi_o", 0), kKey));
 }
 
+std::string slice_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "theta_h", "theta_d", "phi_d"});
+  const Model m = queries::make(f.model(), kKey);
+  const auto theta_h = f.values("theta_h", limits.max_eval_points);
+  const auto theta_d = f.values("theta_d", limits.max_eval_points);
+  if (theta_h.size() * theta_d.size() > limits.max_eval_points)
+    fail("theta_d", fmt::format("{} × {} angles exceed {} points per request", theta_h.size(), theta_d.size(),
+                                limits.max_eval_points));
+  return io::to_json(queries::eval_half_difference(m, theta_h, theta_d, f.number_or("phi_d", 90), kKey));
+}
+
 std::string normalize_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "form", "n", "method", "compare", "condition", "step"});
   queries::NormalizeQuery q;

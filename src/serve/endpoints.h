@@ -10,6 +10,8 @@ namespace specula::serve {
 
 std::string models_endpoint();
 std::string eval_endpoint(std::string_view body, const Limits& limits);
+/// f at Rusinkiewicz's half/difference angles: theta_h × theta_d at phi_d (default 90°).
+std::string slice_endpoint(std::string_view body, const Limits& limits);
 std::string normalize_endpoint(std::string_view body, const Limits& limits);
 std::string albedo_endpoint(std::string_view body, const Limits& limits);
 std::string check_endpoint(std::string_view body, const Limits& limits);

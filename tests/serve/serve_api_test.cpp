@@ -97,6 +97,28 @@ TEST_F(ServeApi, EvalAtDirectionsIsTheBrdfsValue) {
   EXPECT_NEAR(values[1], 1.7407662153196157, 1e-15);  // README's example
 }
 
+// Rusinkiewicz's angles: H at θ_h from N, L at θ_d from H; the values are the model's at those
+// directions, and the directions are what the angles say (H the half vector, ∠(L, H) = θ_d).
+TEST_F(ServeApi, SliceIsTheBrdfsValueAtTheHalfDifferenceAngles) {
+  const json t = ok("/api/slice", {{"model", "ggx"}, {"params", {{"alpha", 0.3}}}, {"theta_h", {0, 20, 40}},
+                                   {"theta_d", "0:60:30"}, {"phi_d", 45}});
+  const Model m = make_model("ggx", {{"alpha", 0.3}});
+  const auto values = column(t, "value");
+  ASSERT_EQ(values.size(), 9u);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double theta_h = radians(20.0 * i), theta_d = radians(30.0 * j);
+      const auto [l, v] = from_half_difference(theta_h, theta_d, radians(45.0));
+      EXPECT_EQ(values[static_cast<std::size_t>(3 * i + j)], m({0, 0, 1}, l, v)) << i << " " << j;
+      const Vec3 h = half_vector(l, v);
+      EXPECT_NEAR(std::acos(h.z), theta_h, 1e-7);
+      EXPECT_NEAR(std::acos(dot(l, h)), theta_d, 1e-7);
+    }
+  // θ_h = θ_d = 0 is L = V = N: the peak, as eval gives it at normal incidence.
+  const json peak = ok("/api/eval", {{"model", "ggx"}, {"params", {{"alpha", 0.3}}}, {"theta_i", 0}, {"theta_o", {0}}});
+  EXPECT_DOUBLE_EQ(values[0], column(peak, "value")[0]);
+}
+
 TEST_F(ServeApi, AlbedoIsTheCubaturesValue) {
   const json t = ok("/api/albedo", {{"model", "log-normalized"}, {"params", {{"n", 20}}}, {"theta", {0, 60, 89}}});
   const Model m = make_model("log-normalized", {{"n", 20}});
@@ -234,6 +256,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"theta_i > 90", "/api/eval", R"({"model": "ggx", "theta_i": 91, "theta_o": [0]})", 400, "theta_i"},
         BadRequest{"theta_o < 0", "/api/eval", R"({"model": "ggx", "theta_i": 10, "theta_o": [-1]})", 400, "theta_o"},
         BadRequest{"phi_o > 360", "/api/eval", R"({"model": "ggx", "theta_i": 10, "theta_o": [0], "phi_o": 400})", 400, "phi_o"},
+        BadRequest{"theta_h > 90", "/api/slice", R"({"model": "ggx", "theta_h": [95], "theta_d": [0]})", 400, "theta_h"},
+        BadRequest{"theta_d < 0", "/api/slice", R"({"model": "ggx", "theta_h": [5], "theta_d": [-1]})", 400, "theta_d"},
+        BadRequest{"phi_d > 360", "/api/slice", R"({"model": "ggx", "theta_h": [5], "theta_d": [0], "phi_d": 361})", 400, "phi_d"},
+        BadRequest{"no theta_d", "/api/slice", R"({"model": "ggx", "theta_h": [5]})", 400, "theta_d"},
+        BadRequest{"a slice over its points", "/api/slice", R"({"model": "ggx", "theta_h": "0:90@101", "theta_d": "0:90@101"})", 400, "theta_d"},
         BadRequest{"theta = 90", "/api/albedo", R"({"model": "lambert", "theta": [90]})", 400, "theta"},
         BadRequest{"coef 0", "/api/albedo", R"({"model": "log-normalized", "coef": 0, "theta": [0]})", 400, "coef"},
         BadRequest{"coef on a full BRDF", "/api/albedo", R"({"model": "ggx", "coef": 2, "theta": [0]})", 400, "coef"},

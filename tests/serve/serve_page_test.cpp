@@ -148,6 +148,54 @@ TEST_F(Page, PickingAModelShowsItsSphereAndPlots) {
               HasSubstr("against phong-normalized"));
 }
 
+/// The θ_h × θ_d image of the page's slice section as the library computes it: 64 × 64 pixels,
+/// column i at θ_h = (i + ½)·90/64°, row j at θ_d, grey = round(255·min(1, (max(0, f)·2^exposure)^(1/gamma)))
+/// (docs/serve.md, web/slices.js).
+std::vector<int> slice_image(const Model& model, double phi_d, double exposure, double gamma) {
+  constexpr int n = 64;
+  std::vector<int> grey(n * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto [l, v] = from_half_difference(radians((i + 0.5) * 90 / n), radians((j + 0.5) * 90 / n), radians(phi_d));
+      const double x = std::max(0.0, model({0, 0, 1}, l, v)) * std::exp2(exposure);
+      grey[static_cast<std::size_t>(j * n + i)] = static_cast<int>(std::lround(255 * std::min(1.0, std::pow(x, 1 / gamma))));
+    }
+  return grey;
+}
+
+/// The largest difference between a slice canvas's grey and `expected`, and whether it is grey.
+int slice_difference(WebDriver& browser, int index, const std::vector<int>& expected) {
+  const json rgba = browser.run(
+      "const c = document.getElementById(arguments[0]);"
+      "return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);",
+      json::array({fmt::format("slice-{}", index)}));
+  if (rgba.size() != 4 * expected.size()) return 256;
+  int worst = 0;
+  for (std::size_t p = 0; p < expected.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(rgba[4 * p + c].get<int>() - expected[p]));
+  return worst;
+}
+
+// The half/difference views: the θ_h and θ_d slices for every model, and each model's θ_h × θ_d
+// image within 1/255 of the library's; exposure redraws it at once, without the server.
+TEST_F(Page, TheHalfDifferenceSlicesMatchTheLibrary) {
+  json page = kState;
+  page["models"][1] = {{"id", "ggx"}, {"params", {{"alpha", 0.4}}}};
+  page["slice"] = {{"theta_h", 20}, {"theta_d", 40}, {"phi_d", 60}, {"exposure", -1}, {"gamma", 2}};
+  open(page);
+  for (const char* plot : {"plot-theta-h", "plot-theta-d"})
+    EXPECT_EQ(browser_->run(fmt::format("return document.querySelectorAll('#{} polyline').length;", plot)), 2) << plot;
+  const Model log = make_model("log-normalized", {{"n", 50}}), ggx = make_model("ggx", {{"alpha", 0.4}});
+  EXPECT_LE(slice_difference(*browser_, 0, slice_image(log, 60, -1, 2)), 1);
+  EXPECT_LE(slice_difference(*browser_, 1, slice_image(ggx, 60, -1, 2)), 1);
+  EXPECT_GT(slice_difference(*browser_, 1, slice_image(log, 60, -1, 2)), 16);  // control: another model's image
+  const int done = renders();
+  browser_->run("const e = document.getElementById('slice-exposure'); e.value = '2'; e.dispatchEvent(new Event('input'));");
+  EXPECT_LE(slice_difference(*browser_, 1, slice_image(ggx, 60, 2, 2)), 1);
+  EXPECT_EQ(renders(), done);  // no new request: the values it had, shown brighter
+  EXPECT_EQ(state()["slice"]["exposure"], 2);
+}
+
 // The fit panel's tests fit k(n) at 10 values of n, not the paper's 50: the panel is what they
 // check, and a fit's cost under the sanitizers grows with the rows (58 s → 23 s for the two).
 // For the same reason the page's requests to /api/fit ask for the smallest search (one island of

@@ -86,6 +86,13 @@ io::Table eval_at_cosines(const Model& m, std::span<const double> cosines, bool 
 io::Table eval_at_directions(const Model& m, double theta_i_deg, std::span<const double> theta_o_deg,
                              double phi_o_deg, Spelling spelling);
 
+/// Columns theta_h_deg,theta_d_deg,value, θ_h-major: f(L, V) with N = +z and L, V at the
+/// half/difference angles (θ_h, θ_d, φ_d) (from_half_difference; 0 where either is below the
+/// horizon), in degrees: BRDF Explorer's θ_h and θ_d slices and its θ_h × θ_d image. InvalidField
+/// "theta_h" or "theta_d" outside [0, 90], "phi_d" outside [-360, 360].
+io::Table eval_half_difference(const Model& m, std::span<const double> theta_h_deg, std::span<const double> theta_d_deg,
+                               double phi_d_deg, Spelling spelling);
+
 // ---- normalize ---------------------------------------------------------------------------------
 
 /// How normalize finds k: the closed form where known, else quadrature (automatic); the closed
