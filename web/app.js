@@ -136,10 +136,23 @@ async function drawPlots(ticket) {
             values: [...column(away, 'value').reverse(), ...column(toward, 'value')]};
   }));
   const thetas = '0:85:5,89';
-  const albedo = await Promise.all(models.map(async (m) => {
+  const albedo = (await Promise.all(models.map(async (m) => {
     const t = await api('/api/albedo', {model: ref(m), params: m.params, theta: thetas});
-    return {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
-  }));
+    const exact = {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
+    if (!state.estimator) return [exact];
+    const e = await api('/api/albedo', {model: ref(m), params: m.params, theta: thetas, method: state.estimator, samples: state.samples});
+    const band = (sign) => ({...m, dashed: true, xs: column(e, 'theta_deg'),
+                             ys: e.rows.map((r) => r.albedo + sign * 2 * r.standard_error)});
+    return [exact, band(-1), band(1)];
+  }))).flat();
+  // E(μ) of each model and, for a catalogue model, of M+ms (models/compensated.h), against μ.
+  const energy = (await Promise.all(models.map(async (m) => {
+    const curve = async (request, dashed) => {
+      const t = await api('/api/albedo', {model: request, params: m.params, theta: thetas});
+      return {...m, dashed, xs: column(t, 'theta_deg').map((d) => Math.cos((d * Math.PI) / 180)), ys: column(t, 'albedo')};
+    };
+    return m.definition ? [await curve(ref(m), false)] : Promise.all([curve(m.id, false), curve(`${m.id}+ms`, true)]);
+  }))).flat();
   const error = isLobe({id: state.reference}) ? await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
     const t = await api('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: errorRange(m)});
     return {...m, xs: column(t, 'n'), ys: column(t, 'max_abs')};
@@ -157,6 +170,7 @@ async function drawPlots(ticket) {
   linePlot($('plot-lobe'), lobe, {xLabel: 'angle (degrees)', yLabel: 'k·F or f'});
   polarPlot($('plot-polar'), polar, {lightDeg: state.theta});
   linePlot($('plot-albedo'), albedo, {xLabel: 'θi (degrees)', yLabel: 'albedo ρ'});
+  linePlot($('plot-energy'), energy, {xLabel: 'μ = cos θi', yLabel: 'E(μ)'});
   linePlot($('plot-error'), error, {xLabel: 'n', yLabel: 'max |F − Fref|', logX: true});
   document.querySelector('#checks tbody').replaceChildren(...checks.map(([id, c]) => tableRow(
     [id, c.albedo_normal, c.max_albedo, c.conserves_energy ? 'yes' : 'no', c.reciprocal ? 'yes' : 'no', c.non_negative ? 'yes' : 'no'])));
@@ -240,6 +254,14 @@ async function main() {
     rebuild();
   });
   state.slice = {...defaultSlice(), ...state.slice};
+  $('albedo-estimator').value = state.estimator;
+  $('albedo-samples').value = state.samples;
+  $('albedo-estimator').addEventListener('change', () => { state.estimator = $('albedo-estimator').value; schedule(); });
+  $('albedo-samples').addEventListener('change', () => {
+    state.samples = Math.min(100000, Math.max(100, Math.round(Number($('albedo-samples').value) || 4000)));
+    $('albedo-samples').value = state.samples;
+    schedule();
+  });
   setupSliceControls();
   setupFit(catalogue.filter((m) => m.kind === 'lobe'));
   setupDesign(catalogue.filter((m) => m.kind === 'lobe'), applyDefinition);

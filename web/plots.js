@@ -27,7 +27,8 @@ function legend(svg, series, x, y) {
   });
 }
 
-/// series: [{name, colour, xs, ys}]; options: {xLabel, yLabel, logX, logY}.
+/// series: [{name, colour, xs, ys, dashed}] (a dashed one is left out of the legend);
+/// options: {xLabel, yLabel, logX, logY}.
 export function linePlot(container, series, options = {}) {
   const W = 360, H = 230, L = 48, R = 10, T = 10, B = 34;
   const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': options.title || options.yLabel || 'plot'});
@@ -45,9 +46,10 @@ export function linePlot(container, series, options = {}) {
   for (const s of series) {
     const points = s.xs.map((x, i) => [x, s.ys[i]]).filter(([x, y]) => finite(x) && finite(y) && (!options.logX || x > 0) && (!options.logY || y > 0));
     if (points.length)
-      svg.append(element('polyline', {points: points.map(([x, y]) => `${px(x).toFixed(1)},${py(y).toFixed(1)}`).join(' '), fill: 'none', stroke: s.colour, 'stroke-width': 1.6}));
+      svg.append(element('polyline', {points: points.map(([x, y]) => `${px(x).toFixed(1)},${py(y).toFixed(1)}`).join(' '), fill: 'none', stroke: s.colour,
+                                      'stroke-width': s.dashed ? 1 : 1.6, ...(s.dashed ? {'stroke-dasharray': '4 3', class: 'band'} : {})}));
   }
-  legend(svg, series, W - R - 150, T + 8);
+  legend(svg, series.filter((s) => !s.dashed), W - R - 150, T + 8);
   container.replaceChildren(svg);
 }
 
@@ -58,9 +60,13 @@ export function polarPlot(container, series, options = {}) {
   const max = Math.max(1e-12, ...series.flatMap((s) => s.values.filter(finite)));
   svg.append(element('path', {d: `M ${cx - radius} ${cy} A ${radius} ${radius} 0 0 1 ${cx + radius} ${cy} Z`, fill: 'none', stroke: '#bbb'}));
   svg.append(element('line', {x1: cx, y1: cy, x2: cx, y2: cy - radius, stroke: '#ddd'}));
-  if (options.lightDeg !== undefined) {
+  if (options.lightDeg !== undefined) {  // the incident direction (left) and its mirror (right)
     const a = (options.lightDeg * Math.PI) / 180;
-    svg.append(element('line', {x1: cx, y1: cy, x2: cx - radius * Math.sin(a), y2: cy - radius * Math.cos(a), stroke: '#e6a700', 'stroke-dasharray': '4 3'}));
+    for (const [side, name, colour] of [[-1, 'incident', '#e6a700'], [1, 'mirror', '#777']]) {
+      const x2 = cx + side * radius * Math.sin(a), y2 = cy - radius * Math.cos(a);
+      svg.append(element('line', {x1: cx, y1: cy, x2, y2, stroke: colour, 'stroke-dasharray': '4 3', class: name}));
+      svg.append(element('text', {x: x2, y: y2 - 3, 'font-size': 10, fill: colour, 'text-anchor': side < 0 ? 'end' : 'start'}, name));
+    }
   }
   for (const s of series) {
     const points = s.degrees.map((d, i) => {

@@ -8,6 +8,7 @@
 #include "specula/analysis/albedo.h"
 #include "specula/analysis/error.h"
 #include "specula/analysis/monte_carlo.h"
+#include "specula/sampling/estimators.h"
 #include "specula/analysis/parallel.h"
 #include "specula/brdf/directions.h"
 #include "specula/catalogue/catalogue.h"
@@ -248,19 +249,39 @@ io::Table normalize_table(const NormalizeQuery& q, Spelling spelling) {
   return table;
 }
 
+/// The estimator of BRDF Explorer's that a method names (uniform, cosine, sampler, mis).
+sampling::Estimator estimator_of(AlbedoMethod method) {
+  switch (method) {
+    case AlbedoMethod::uniform: return sampling::Estimator::uniform;
+    case AlbedoMethod::cosine: return sampling::Estimator::cosine;
+    case AlbedoMethod::sampler: return sampling::Estimator::sampler;
+    default: return sampling::Estimator::mis;
+  }
+}
+
 io::Table albedo_table(const Model& m, const AlbedoQuery& q, Spelling spelling) {
   for (const double d : q.theta_deg)
     for_field("theta", [&] { analysis::require_incidence_deg(d, spelled("theta", spelling).c_str()); });
   if (q.samples < 1 || q.samples > 1'000'000'000)
     fail("samples", fmt::format("{} {} is outside [1, 1000000000]", spelled("samples", spelling), q.samples));
-  const bool monte_carlo = q.method == AlbedoMethod::monte_carlo;
+  if (q.method != AlbedoMethod::cubature && q.method != AlbedoMethod::monte_carlo && q.samples < 2)
+    fail("samples", fmt::format("{} {}: an estimator's standard error needs 2 samples or more",
+                                spelled("samples", spelling), q.samples));
   io::Table table{{"theta_deg", "albedo"}, {}, model_meta(m)};
   table.meta.emplace_back("method", to_string(q.method));
-  if (monte_carlo) table.columns.push_back("standard_error");
+  if (samples(q.method)) table.columns.push_back("standard_error");
   const auto rows = analysis::parallel_map(std::span<const double>(q.theta_deg), [&](double deg) {
-    if (!monte_carlo) return std::vector<double>{deg, analysis::albedo(m, radians(deg)).value};
-    const auto e = analysis::albedo_monte_carlo(m, radians(deg), q.samples, q.seed);
-    return std::vector<double>{deg, e.mean, e.standard_error};
+    switch (q.method) {
+      case AlbedoMethod::cubature: return std::vector<double>{deg, analysis::albedo(m, radians(deg)).value};
+      case AlbedoMethod::monte_carlo: {
+        const auto e = analysis::albedo_monte_carlo(m, radians(deg), q.samples, q.seed);
+        return std::vector<double>{deg, e.mean, e.standard_error};
+      }
+      default: {
+        const auto e = sampling::albedo_estimate(m, radians(deg), estimator_of(q.method), q.samples, q.seed);
+        return std::vector<double>{deg, e.mean, e.standard_error};
+      }
+    }
   });
   table.rows.assign(rows.begin(), rows.end());
   return table;

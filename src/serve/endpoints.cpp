@@ -79,7 +79,7 @@ std::string albedo_endpoint(std::string_view body, const Limits& limits) {
   q.method = queries::albedo_method_named(f.text_or("method", to_string(q.method)), kKey);
   q.samples = static_cast<std::uint64_t>(f.integer_or("samples", 100'000, 1, 1'000'000'000));
   q.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
-  if (q.method == queries::AlbedoMethod::monte_carlo && q.samples * q.theta_deg.size() > limits.max_monte_carlo_samples)
+  if (queries::samples(q.method) && q.samples * q.theta_deg.size() > limits.max_monte_carlo_samples)
     fail("samples", fmt::format("samples × angles = {} exceeds {} per request",
                                 q.samples * q.theta_deg.size(), limits.max_monte_carlo_samples));
   return io::to_json(queries::albedo_table(m, q, kKey));

@@ -17,6 +17,7 @@
 #include "specula/normalize/normalize.h"
 #include "specula/render/scene.h"
 #include "specula/render/scene_shader.h"
+#include "specula/sampling/estimators.h"
 
 namespace specula::serve {
 namespace {
@@ -130,6 +131,12 @@ TEST_F(ServeApi, AlbedoIsTheCubaturesValue) {
   EXPECT_NEAR(albedo[0], 1, 1e-9);
   const json mc = ok("/api/albedo", {{"model", "lambert"}, {"theta", {30}}, {"method", "monte-carlo"}, {"samples", 10000}});
   EXPECT_THAT(mc["columns"], ::testing::Contains("standard_error"));
+  // BRDF Explorer's estimators: the library's estimate, the same for the same seed.
+  const json mis = ok("/api/albedo", {{"model", "log-normalized"}, {"params", {{"n", 20}}}, {"theta", {60}},
+                                      {"method", "mis"}, {"samples", 5000}, {"seed", 4}});
+  const sampling::AlbedoEstimate e = sampling::albedo_estimate(m, radians(60.0), sampling::Estimator::mis, 5000, 4);
+  EXPECT_EQ(column(mis, "albedo")[0], e.mean);
+  EXPECT_EQ(column(mis, "standard_error")[0], e.standard_error);
 }
 
 TEST_F(ServeApi, CheckGivesTheVerdictsOfTheLibrary) {

@@ -143,6 +143,10 @@ TEST_F(Page, PickingAModelShowsItsSphereAndPlots) {
   for (const char* plot : {"plot-lobe", "plot-polar", "plot-albedo"})
     EXPECT_EQ(browser_->run(fmt::format("return document.querySelectorAll('#{} polyline').length;", plot)), 2) << plot;
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-error polyline').length;"), 1);  // ggx is no lobe
+  // The polar plot draws the incident and mirror directions; the energy plot E(μ) and, dashed, M+ms.
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-polar line.incident, #plot-polar line.mirror').length;"), 2);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-energy polyline').length;"), 4);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-energy polyline.band').length;"), 2);
   EXPECT_EQ(browser_->run("return document.querySelector('#coefficients tbody td:nth-child(3)').textContent;"), "10.108516");
   EXPECT_THAT(browser_->run("return document.getElementById('difference-caption').textContent;").get<std::string>(),
               HasSubstr("against phong-normalized"));
@@ -194,6 +198,21 @@ TEST_F(Page, TheHalfDifferenceSlicesMatchTheLibrary) {
   EXPECT_LE(slice_difference(*browser_, 1, slice_image(ggx, 60, 2, 2)), 1);
   EXPECT_EQ(renders(), done);  // no new request: the values it had, shown brighter
   EXPECT_EQ(state()["slice"]["exposure"], 2);
+}
+
+// The albedo view: beside each model's cubature curve, the chosen estimator's ±2σ band, dashed.
+TEST_F(Page, TheAlbedoPlotShowsTheEstimatorsBand) {
+  json page = kState;
+  page["estimator"] = "sampler";
+  page["samples"] = 1000;
+  open(page);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-albedo polyline').length;"), 6);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-albedo polyline.band').length;"), 4);
+  const int done = renders();
+  browser_->run("const s = document.getElementById('albedo-estimator'); s.value = ''; s.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-albedo polyline.band').length;"), 0);
+  EXPECT_EQ(state()["estimator"], "");
 }
 
 // The fit panel's tests fit k(n) at 10 values of n, not the paper's 50: the panel is what they

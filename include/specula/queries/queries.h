@@ -147,18 +147,27 @@ io::Table normalize_table(const NormalizeQuery& query, Spelling spelling);
 
 // ---- albedo ------------------------------------------------------------------------------------
 
-/// How albedo integrates: deterministic adaptive cubature, or importance-sampled Monte Carlo.
-enum class AlbedoMethod { cubature, monte_carlo };
-inline constexpr std::size_t kAlbedoMethodCount = static_cast<std::size_t>(AlbedoMethod::monte_carlo) + 1;  // monte_carlo: the last
+/// How albedo integrates: deterministic adaptive cubature; importance-sampled Monte Carlo (the
+/// cross-check's mixture, analysis/monte_carlo.h); or Monte Carlo with one of BRDF Explorer's
+/// estimators (sampling/estimators.h): uniform, cosine, the model's sampler, or MIS of the two.
+enum class AlbedoMethod { cubature, monte_carlo, uniform, cosine, sampler, mis };
+inline constexpr std::size_t kAlbedoMethodCount = static_cast<std::size_t>(AlbedoMethod::mis) + 1;  // mis: the last
 
-/// "cubature" or "monte-carlo" ("" outside the enum).
+/// "cubature", "monte-carlo", "uniform", "cosine", "sampler", "mis" ("" outside the enum).
 constexpr const char* to_string(AlbedoMethod method) noexcept {
   switch (method) {
     case AlbedoMethod::cubature: return "cubature";
     case AlbedoMethod::monte_carlo: return "monte-carlo";
+    case AlbedoMethod::uniform: return "uniform";
+    case AlbedoMethod::cosine: return "cosine";
+    case AlbedoMethod::sampler: return "sampler";
+    case AlbedoMethod::mis: return "mis";
   }
   return "";
 }
+
+/// True for the methods that draw samples (every one but cubature).
+constexpr bool samples(AlbedoMethod method) noexcept { return method != AlbedoMethod::cubature; }
 static_assert(names_complete<AlbedoMethod, kAlbedoMethodCount>([](AlbedoMethod m) { return to_string(m); }));
 
 /// The method named `text`; InvalidField "method" otherwise.
@@ -167,11 +176,11 @@ AlbedoMethod albedo_method_named(std::string_view text, Spelling spelling);
 struct AlbedoQuery {
   std::vector<double> theta_deg;     ///< each in [0, 90)
   AlbedoMethod method = AlbedoMethod::cubature;
-  std::uint64_t samples = 1'000'000;  ///< monte-carlo: per angle, [1, 1e9]
+  std::uint64_t samples = 1'000'000;  ///< the sampling methods: per angle, [1, 1e9] (estimators: ≥ 2)
   std::uint64_t seed = 1;
 };
 
-/// Columns theta_deg,albedo (+ standard_error for monte-carlo), angles computed in parallel.
+/// Columns theta_deg,albedo (+ standard_error for the sampling methods), angles computed in parallel.
 io::Table albedo_table(const Model& m, const AlbedoQuery& query, Spelling spelling);
 
 // ---- error -------------------------------------------------------------------------------------
