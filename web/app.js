@@ -61,6 +61,14 @@ function modelCard(model, index) {
     button.addEventListener('click', () => edit(model.definition));
     header.append(button);
   }
+  const visible = Object.assign(document.createElement('input'), {type: 'checkbox', id: `visible-${index}`, checked: !model.hidden});
+  visible.addEventListener('change', () => { model.hidden = !visible.checked; schedule(); });
+  const visibleLabel = Object.assign(document.createElement('label'), {htmlFor: visible.id, className: 'inline', textContent: 'shown'});
+  visibleLabel.title = 'Shown in the plots and slices';
+  const solo = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Solo'});
+  solo.setAttribute('aria-label', `Show model ${index + 1} alone in the plots`);
+  solo.addEventListener('click', () => { state.models.forEach((m, i) => { m.hidden = i !== index; }); rebuild(); });
+  header.append(visible, visibleLabel, solo);
   if (state.models.length > 1) {
     const remove = Object.assign(document.createElement('button'), {type: 'button', textContent: 'Remove'});
     remove.setAttribute('aria-label', `Remove model ${index + 1}`);
@@ -123,9 +131,18 @@ async function drawSpheres(ticket) {
   $('difference-caption').textContent = `|ΔL| of ${state.models[0].id} against ${state.reference}: max ${max.toPrecision(3)}`;
 }
 
+/// What the plot switches make of f (BRDF Explorer's): × N·L multiplies by the incident cosine
+/// (a number, or one per point), log10(x + 1) compresses the range.
+function shown(ys, cosines) {
+  return ys.map((y, i) => {
+    const v = state.timesCos ? y * (Array.isArray(cosines) ? cosines[i] : cosines) : y;
+    return state.logPlot ? Math.log10(v + 1) : v;
+  });
+}
+
 async function drawPlots(ticket) {
   const degrees = Array.from({length: 90}, (_, i) => i);
-  const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id}));
+  const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id})).filter((m) => !m.hidden);
   const lobe = await Promise.all(models.map(async (m) => isLobe(m)
     ? {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
     : {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
@@ -167,8 +184,10 @@ async function drawPlots(ticket) {
   // A coarse check (fewer pairs, a 5° grid) keeps each update quick.
   const checks = await Promise.all(models.map(async (m) => [m.id, (await api('/api/check', {model: ref(m), params: m.params, pairs: 1000, step: 5}))[0]]));
   if (ticket !== generation) return;
-  linePlot($('plot-lobe'), lobe, {xLabel: 'angle (degrees)', yLabel: 'k·F or f'});
-  polarPlot($('plot-polar'), polar, {lightDeg: state.theta});
+  const cosI = Math.cos((state.theta * Math.PI) / 180);
+  const label = (y) => (state.logPlot ? `log10(${y}${state.timesCos ? ' · N·L' : ''} + 1)` : `${y}${state.timesCos ? ' · N·L' : ''}`);
+  linePlot($('plot-lobe'), lobe.map((s) => ({...s, ys: isLobe(s) ? shown(s.ys, 1) : shown(s.ys, cosI)})), {xLabel: 'angle (degrees)', yLabel: label('k·F or f')});
+  polarPlot($('plot-polar'), polar.map((s) => ({...s, values: shown(s.values, cosI)})), {lightDeg: state.theta});
   linePlot($('plot-albedo'), albedo, {xLabel: 'θi (degrees)', yLabel: 'albedo ρ'});
   linePlot($('plot-energy'), energy, {xLabel: 'μ = cos θi', yLabel: 'E(μ)'});
   linePlot($('plot-error'), error, {xLabel: 'n', yLabel: 'max |F − Fref|', logX: true});
@@ -178,11 +197,12 @@ async function drawPlots(ticket) {
 }
 
 async function drawSliceViews(ticket) {
-  const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i]}));
+  const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i], hidden: m.hidden}))
+    .filter((m) => !m.hidden);
   const fetched = await fetchSlices(models, state.slice);
   if (ticket !== generation) return;
   slices = fetched;
-  drawSlices(slices, state.slice);
+  drawSlices(slices, state.slice, shown);
 }
 
 /// The slices' sliders: the angles ask the server again; exposure and gamma redraw what it gave.
@@ -196,7 +216,7 @@ function setupSliceControls() {
       output.textContent = state.slice[key];
       if ((key === 'exposure' || key === 'gamma') && slices) {
         writeState(state);
-        drawSlices(slices, state.slice);
+        drawSlices(slices, state.slice, shown);
       } else {
         schedule();
       }
@@ -254,6 +274,10 @@ async function main() {
     rebuild();
   });
   state.slice = {...defaultSlice(), ...state.slice};
+  for (const [id, key] of [['plot-log', 'logPlot'], ['plot-times-cos', 'timesCos']]) {
+    $(id).checked = Boolean(state[key]);
+    $(id).addEventListener('change', () => { state[key] = $(id).checked; schedule(); });
+  }
   $('albedo-estimator').value = state.estimator;
   $('albedo-samples').value = state.samples;
   $('albedo-estimator').addEventListener('change', () => { state.estimator = $('albedo-estimator').value; schedule(); });

@@ -1,8 +1,10 @@
 // The designer panel: POST /api/design for cheap lobes against a target over a range of its
 // parameter, poll GET /api/design/{id} while the front grows (finished lobes first on the cost
 // model's axis, then timed and checked), DELETE to cancel; "Add" puts a member on the page as a
-// model card (its definition object, normalized by quadrature).
+// model card (its definition object, normalized by quadrature), and so does a click on its point
+// of the front's chart (error against cost; the references grey, where they are timed).
 import {api, del, pollJob} from './api.js';
+import {paretoPlot} from './plots.js';
 
 const cell = (text) => Object.assign(document.createElement('td'), {textContent: text});
 const number = (x, digits = 4) => (x === null || x === undefined ? '-' : Number(x).toPrecision(digits));
@@ -35,6 +37,13 @@ export function setupDesign(lobeModels, addModel) {
     status.textContent = `job ${s.job}: ${s.state} · ${s.phase} ${s.done}/${s.total} · ${s.forms_screened} shapes screened` +
       ` · ${s.elapsed_s.toFixed(1)} s` + (s.final ? '' : ' · front so far on the cost model') + (s.error ? ` · ${s.error}` : '');
     body.replaceChildren(...s.front.map(memberRow), ...s.references.map(memberRow));
+    const timed = [...s.front, ...s.references].some((l) => l.ns_per_eval !== null && l.ns_per_eval !== undefined);
+    const cost = (l) => (timed ? l.ns_per_eval : l.model_cost) ?? NaN;  // untimed references have no cost
+    paretoPlot($('design-chart'), [...s.front, ...s.references].map((l) => ({
+      x: cost(l), y: Number(l.max_abs_error), reference: l.kind === 'reference',
+      label: `${l.id}: max error ${number(l.max_abs_error)}, cost ${number(cost(l), 3)}${l.definition ? ' (add it to the page)' : ''}`,
+      onPick: l.definition ? () => addModel(l.definition_normalized) : undefined})),
+      {xLabel: timed ? 'ns per value' : 'cost model', yLabel: 'max |F − target|'});
   };
 
   const finish = (error) => {

@@ -79,3 +79,37 @@ export function polarPlot(container, series, options = {}) {
   legend(svg, series, W - 150, 10);
   container.replaceChildren(svg);
 }
+
+/// points: [{x, y, label, reference, onPick}]: a scatter of the error y (log axis; an error of 0
+/// drawn at a tenth of the least positive one) against the cost x (linear; a point without one is
+/// left out), a point with onPick a focusable button (click, Enter or Space picks it), references grey.
+export function paretoPlot(container, points, options = {}) {
+  const W = 360, H = 230, L = 48, R = 10, T = 10, B = 34;
+  const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'group', 'aria-label': options.title || 'Pareto front'});
+  const positive = points.map((p) => p.y).filter((y) => finite(y) && y > 0);
+  const floor = positive.length ? Math.min(...positive) / 10 : 1e-12;
+  const usable = points.filter((p) => finite(p.x) && finite(p.y)).map((p) => ({...p, y: Math.max(p.y, floor)}));
+  const [x0, x1] = extent(usable.map((p) => p.x), false), [y0, y1] = extent(usable.map((p) => p.y), true);
+  const at = (v, lo, hi, log) => (hi > lo ? (log ? (Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo)) : (v - lo) / (hi - lo)) : 0.5);
+  const px = (v) => L + 8 + at(v, x0, x1, false) * (W - L - R - 16), py = (v) => H - B - 8 - at(v, y0, y1, true) * (H - T - B - 16);
+  svg.append(element('rect', {x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999'}));
+  for (const [v, anchor] of [[x0, 'start'], [x1, 'end']])
+    svg.append(element('text', {x: px(v), y: H - B + 13, 'font-size': 10, 'text-anchor': anchor}, +v.toPrecision(3)));
+  for (const v of [y0, y1]) svg.append(element('text', {x: L - 3, y: py(v) + 4, 'font-size': 10, 'text-anchor': 'end'}, +v.toPrecision(3)));
+  svg.append(element('text', {x: (L + W - R) / 2, y: H - 4, 'font-size': 11, 'text-anchor': 'middle'}, options.xLabel || 'cost'));
+  svg.append(element('text', {x: 12, y: (T + H - B) / 2, 'font-size': 11, 'text-anchor': 'middle', transform: `rotate(-90 12 ${(T + H - B) / 2})`}, options.yLabel || 'error'));
+  for (const p of usable) {
+    const mark = element('circle', {cx: px(p.x), cy: py(p.y), r: 5, fill: p.reference ? '#999' : '#1f77b4', class: p.reference ? 'reference' : 'member'});
+    mark.append(element('title', {}, p.label));
+    if (p.onPick) {
+      mark.setAttribute('tabindex', '0');
+      mark.setAttribute('role', 'button');
+      mark.setAttribute('aria-label', p.label);
+      mark.style.cursor = 'pointer';
+      mark.addEventListener('click', p.onPick);
+      mark.addEventListener('keydown', (e) => { if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); p.onPick(); } });
+    }
+    svg.append(mark);
+  }
+  container.replaceChildren(svg);
+}

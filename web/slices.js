@@ -40,9 +40,21 @@ export async function fetchSlices(models, settings) {
   }));
 }
 
-/// Draws the two plots and the images into the section (#plot-theta-h, #plot-theta-d, #slice-images).
-export function drawSlices(slices, settings) {
-  const series = (key) => slices.map((s) => ({name: s.name, colour: s.colour, xs: degrees, ys: s[key]}));
+/// N·L at the half/difference angles (degrees): L's height, cos θ_d cos θ_h − sin θ_d cos φ_d sin θ_h.
+const cosL = (theta_h, theta_d, phi_d) => {
+  const r = Math.PI / 180;
+  return Math.cos(theta_d * r) * Math.cos(theta_h * r) - Math.sin(theta_d * r) * Math.cos(phi_d * r) * Math.sin(theta_h * r);
+};
+
+/// Draws the two plots and the images into the section (#plot-theta-h, #plot-theta-d, #slice-images);
+/// `shown(ys, cosines)` is what the page's plot switches make of f (× N·L, log10(x + 1)), the
+/// images show f itself.
+export function drawSlices(slices, settings, shown = (ys) => ys) {
+  const cosines = {
+    h: degrees.map((d) => cosL(d, settings.theta_d, settings.phi_d)),
+    d: degrees.map((d) => cosL(settings.theta_h, d, settings.phi_d)),
+  };
+  const series = (key) => slices.map((s) => ({name: s.name, colour: s.colour, xs: degrees, ys: shown(s[key], cosines[key])}));
   linePlot(document.getElementById('plot-theta-h'), series('h'), {xLabel: `θh (degrees), θd = ${settings.theta_d}°`, yLabel: 'f'});
   linePlot(document.getElementById('plot-theta-d'), series('d'), {xLabel: `θd (degrees), θh = ${settings.theta_h}°`, yLabel: 'f'});
   document.getElementById('slice-images').replaceChildren(...slices.map((s, i) => {

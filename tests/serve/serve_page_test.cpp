@@ -215,6 +215,38 @@ TEST_F(Page, TheAlbedoPlotShowsTheEstimatorsBand) {
   EXPECT_EQ(state()["estimator"], "");
 }
 
+/// The lobe plot's largest y tick (the plot's upper end, as printed).
+double lobe_plot_top(WebDriver& browser) {
+  return std::stod(browser.run("const t = [...document.querySelectorAll('#plot-lobe text')].map((e) => e.textContent);"
+                               "return t[3];").get<std::string>());
+}
+
+// BRDF Explorer's switches: log10(x + 1) and × N·L change every plot of f; a model unticked (or
+// another one soloed) leaves the plots.
+TEST_F(Page, ThePlotSwitchesAndVisibilityReachEveryPlot) {
+  json page = kState;
+  page["models"][1] = {{"id", "ggx"}, {"params", {{"alpha", 0.3}}}};
+  open(page);
+  const double top = lobe_plot_top(*browser_);
+  int done = renders();
+  browser_->run("const c = document.getElementById('plot-log'); c.checked = true; c.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_NEAR(lobe_plot_top(*browser_), std::log10(top + 1), 0.01 * std::log10(top + 1));
+  EXPECT_THAT(browser_->run("return document.querySelector('#plot-theta-h svg').textContent;").get<std::string>(), HasSubstr("0"));
+  done = renders();
+  browser_->run("const c = document.getElementById('plot-times-cos'); c.checked = true; c.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_EQ(state()["timesCos"], true);
+  EXPECT_THAT(browser_->run("return document.querySelector('#plot-lobe svg').textContent;").get<std::string>(), HasSubstr("· N·L"));
+  done = renders();
+  browser_->run("const c = document.getElementById('visible-1'); c.checked = false; c.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  for (const char* plot : {"plot-lobe", "plot-polar", "plot-theta-h"})
+    EXPECT_EQ(browser_->run(fmt::format("return document.querySelectorAll('#{} polyline').length;", plot)), 1) << plot;
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#slice-images canvas').length;"), 1);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#spheres canvas').length;"), 2);  // the spheres stay
+}
+
 // The fit panel's tests fit k(n) at 10 values of n, not the paper's 50: the panel is what they
 // check, and a fit's cost under the sanitizers grows with the rows (58 s → 23 s for the two).
 // For the same reason the page's requests to /api/fit ask for the smallest search (one island of
@@ -285,12 +317,24 @@ TEST_F(Page, TheDesignPanelAddsAMemberToThePagesModels) {
   EXPECT_GE(browser_->run("return document.querySelectorAll('#design-front tbody tr.reference').length;").get<int>(), 2);
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#design-front tbody button').length;").get<int>(), members);
   const std::string id = browser_->run("return document.querySelector('#design-front tr.member td').textContent;").get<std::string>();
-  const int done = renders();
+  int done = renders();
   browser_->click("#design-front tr.member button");
   ASSERT_TRUE(wait_until_rendered(done + 1));
   ASSERT_TRUE(browser_->wait_for("return document.getElementById('sphere-2') !== null;"));
   EXPECT_EQ(state()["models"][2]["id"], id + "-normalized");
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#checks tbody tr').length;"), 3);
+  // The front's chart: a point per lobe, the members' clickable; a click adds one as the table's button does.
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#design-chart circle.member[role=button]').length;").get<int>(), members);
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#design-chart circle.reference').length;").get<int>(), 0);  // untimed
+  done = renders();
+  browser_->run("document.querySelector('button[aria-label=\"Remove model 3\"]').click();");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_EQ(state()["models"].size(), 2u);
+  done = renders();
+  browser_->run("document.querySelector('#design-chart circle.member').dispatchEvent(new MouseEvent('click'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('sphere-2') !== null;"));
+  EXPECT_EQ(state()["models"][2]["id"], id + "-normalized");
 }
 
 /// The editor's default definition as a model file, for the CPU renderer's image of it.
