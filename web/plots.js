@@ -27,29 +27,36 @@ function legend(svg, series, x, y) {
   });
 }
 
-/// series: [{name, colour, xs, ys, dashed}] (a dashed one is left out of the legend);
-/// options: {xLabel, yLabel, logX, logY}.
-export function linePlot(container, series, options = {}) {
-  const W = 360, H = 230, L = 48, R = 10, T = 10, B = 34;
-  const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'img', 'aria-label': options.title || options.yLabel || 'plot'});
-  const [x0, x1] = extent(series.flatMap((s) => s.xs), options.logX);
-  const [y0, y1] = extent(series.flatMap((s) => s.ys), options.logY);
-  const f = (v, lo, hi, log) => (log ? (Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo)) : (v - lo) / (hi - lo));
-  const px = (v) => L + f(v, x0, x1, options.logX) * (W - L - R);
-  const py = (v) => H - B - f(v, y0, y1, options.logY) * (H - T - B);
+const kBox = {W: 360, H: 230, L: 48, R: 10, T: 10, B: 34};  // the plots' size and margins
+
+/// The frame, end ticks and axis labels of a plot of [x0, x1] × [y0, y1] (options.logX, logY:
+/// log axes), its marks `pad` pixels inside the frame; returns px and py, values to pixels.
+function axes(svg, [x0, x1], [y0, y1], options, pad = 0) {
+  const {W, H, L, R, T, B} = kBox;
+  const at = (v, lo, hi, log) => (hi > lo ? (log ? (Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo)) : (v - lo) / (hi - lo)) : 0.5);
+  const px = (v) => L + pad + at(v, x0, x1, options.logX) * (W - L - R - 2 * pad);
+  const py = (v) => H - B - pad - at(v, y0, y1, options.logY) * (H - T - B - 2 * pad);
   svg.append(element('rect', {x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999'}));
   for (const [v, anchor] of [[x0, 'start'], [x1, 'end']])
     svg.append(element('text', {x: px(v), y: H - B + 13, 'font-size': 10, 'text-anchor': anchor}, +v.toPrecision(3)));
   for (const v of [y0, y1]) svg.append(element('text', {x: L - 3, y: py(v) + 4, 'font-size': 10, 'text-anchor': 'end'}, +v.toPrecision(3)));
   svg.append(element('text', {x: (L + W - R) / 2, y: H - 4, 'font-size': 11, 'text-anchor': 'middle'}, options.xLabel || ''));
   svg.append(element('text', {x: 12, y: (T + H - B) / 2, 'font-size': 11, 'text-anchor': 'middle', transform: `rotate(-90 12 ${(T + H - B) / 2})`}, options.yLabel || ''));
+  return {px, py};
+}
+
+/// series: [{name, colour, xs, ys, dashed}] (a dashed one is left out of the legend);
+/// options: {xLabel, yLabel, logX, logY}.
+export function linePlot(container, series, options = {}) {
+  const svg = element('svg', {viewBox: `0 0 ${kBox.W} ${kBox.H}`, role: 'img', 'aria-label': options.title || options.yLabel || 'plot'});
+  const {px, py} = axes(svg, extent(series.flatMap((s) => s.xs), options.logX), extent(series.flatMap((s) => s.ys), options.logY), options);
   for (const s of series) {
     const points = s.xs.map((x, i) => [x, s.ys[i]]).filter(([x, y]) => finite(x) && finite(y) && (!options.logX || x > 0) && (!options.logY || y > 0));
     if (points.length)
       svg.append(element('polyline', {points: points.map(([x, y]) => `${px(x).toFixed(1)},${py(y).toFixed(1)}`).join(' '), fill: 'none', stroke: s.colour,
                                       'stroke-width': s.dashed ? 1 : 1.6, ...(s.dashed ? {'stroke-dasharray': '4 3', class: 'band'} : {})}));
   }
-  legend(svg, series.filter((s) => !s.dashed), W - R - 150, T + 8);
+  legend(svg, series.filter((s) => !s.dashed), kBox.W - kBox.R - 150, kBox.T + 8);
   container.replaceChildren(svg);
 }
 
@@ -84,20 +91,12 @@ export function polarPlot(container, series, options = {}) {
 /// drawn at a tenth of the least positive one) against the cost x (linear; a point without one is
 /// left out), a point with onPick a focusable button (click, Enter or Space picks it), references grey.
 export function paretoPlot(container, points, options = {}) {
-  const W = 360, H = 230, L = 48, R = 10, T = 10, B = 34;
-  const svg = element('svg', {viewBox: `0 0 ${W} ${H}`, role: 'group', 'aria-label': options.title || 'Pareto front'});
+  const svg = element('svg', {viewBox: `0 0 ${kBox.W} ${kBox.H}`, role: 'group', 'aria-label': options.title || 'Pareto front'});
   const positive = points.map((p) => p.y).filter((y) => finite(y) && y > 0);
   const floor = positive.length ? Math.min(...positive) / 10 : 1e-12;
   const usable = points.filter((p) => finite(p.x) && finite(p.y)).map((p) => ({...p, y: Math.max(p.y, floor)}));
-  const [x0, x1] = extent(usable.map((p) => p.x), false), [y0, y1] = extent(usable.map((p) => p.y), true);
-  const at = (v, lo, hi, log) => (hi > lo ? (log ? (Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo)) : (v - lo) / (hi - lo)) : 0.5);
-  const px = (v) => L + 8 + at(v, x0, x1, false) * (W - L - R - 16), py = (v) => H - B - 8 - at(v, y0, y1, true) * (H - T - B - 16);
-  svg.append(element('rect', {x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#999'}));
-  for (const [v, anchor] of [[x0, 'start'], [x1, 'end']])
-    svg.append(element('text', {x: px(v), y: H - B + 13, 'font-size': 10, 'text-anchor': anchor}, +v.toPrecision(3)));
-  for (const v of [y0, y1]) svg.append(element('text', {x: L - 3, y: py(v) + 4, 'font-size': 10, 'text-anchor': 'end'}, +v.toPrecision(3)));
-  svg.append(element('text', {x: (L + W - R) / 2, y: H - 4, 'font-size': 11, 'text-anchor': 'middle'}, options.xLabel || 'cost'));
-  svg.append(element('text', {x: 12, y: (T + H - B) / 2, 'font-size': 11, 'text-anchor': 'middle', transform: `rotate(-90 12 ${(T + H - B) / 2})`}, options.yLabel || 'error'));
+  const {px, py} = axes(svg, extent(usable.map((p) => p.x), false), extent(usable.map((p) => p.y), true),
+                        {xLabel: 'cost', yLabel: 'error', ...options, logY: true}, 8);
   for (const p of usable) {
     const mark = element('circle', {cx: px(p.x), cy: py(p.y), r: 5, fill: p.reference ? '#999' : '#1f77b4', class: p.reference ? 'reference' : 'member'});
     mark.append(element('title', {}, p.label));
