@@ -9,6 +9,7 @@ import {setupFit} from './fit.js';
 import {setupDesign} from './design.js';
 import {setupEditor} from './editor.js';
 import {fetchSlices, drawSlices} from './slices.js';
+import {drawSampling} from './sampling.js';
 
 const $ = (id) => document.getElementById(id);
 let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null;
@@ -103,10 +104,31 @@ function rebuild() {
     const canvas = Object.assign(document.createElement('canvas'), {id: `sphere-${i}`, width: state.size, height: state.size});
     canvas.setAttribute('aria-label', `Sphere shaded with ${m.id}`);
     views.push(new SphereView(canvas));
+    canvas.addEventListener('pointerdown', (e) => {
+      lightFromPointer(canvas, e);
+      try { canvas.setPointerCapture(e.pointerId); } catch { /* a synthetic pointer has nothing to capture */ }
+    });
+    canvas.addEventListener('pointermove', (e) => { if (e.buttons & 1) lightFromPointer(canvas, e); });
     figure.append(canvas, Object.assign(document.createElement('figcaption'), {textContent: m.id}));
     return figure;
   }));
   views.reference = new SphereView(Object.assign(document.createElement('canvas'), {width: state.size, height: state.size}));
+  schedule();
+}
+
+/// BRDF Explorer's lit sphere: the light comes from the direction of the sphere's point under the
+/// pointer (x right, y up, z toward the viewer, the unit disc filling the canvas; outside it, its
+/// edge), which sets θ_i and φ and so every view.
+function lightFromPointer(canvas, event) {
+  const box = canvas.getBoundingClientRect();
+  let x = (2 * (event.clientX - box.left)) / box.width - 1, y = 1 - (2 * (event.clientY - box.top)) / box.height;
+  const r = Math.hypot(x, y);
+  if (r > 1) [x, y] = [x / r, y / r];
+  const z = Math.sqrt(Math.max(0, 1 - x * x - y * y));
+  state.theta = Math.min(89, Math.round((Math.acos(z) * 180) / Math.PI));
+  state.phi = 5 * Math.round((Math.atan2(y, x) * 180) / Math.PI / 5);
+  $('light-theta').value = state.theta;
+  $('light-phi').value = state.phi;
   schedule();
 }
 
@@ -249,7 +271,9 @@ async function update() {
   $('status').textContent = 'computing…';
   $('status').className = '';
   try {
-    await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket)]);
+    const first = state.models[0];
+    await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket),
+                       drawSampling({request: ref(first), params: first.params, name: first.id}, state.theta, state.samplingSamples)]);
     if (ticket !== generation) return;
     $('status').textContent = 'ready';
     document.body.dataset.renders = String(Number(document.body.dataset.renders || 0) + 1);
@@ -278,6 +302,8 @@ async function main() {
     $(id).checked = Boolean(state[key]);
     $(id).addEventListener('change', () => { state[key] = $(id).checked; schedule(); });
   }
+  $('sampling-samples').value = String(state.samplingSamples);
+  $('sampling-samples').addEventListener('change', () => { state.samplingSamples = Number($('sampling-samples').value); schedule(); });
   $('albedo-estimator').value = state.estimator;
   $('albedo-samples').value = state.samples;
   $('albedo-estimator').addEventListener('change', () => { state.estimator = $('albedo-estimator').value; schedule(); });

@@ -12,6 +12,9 @@
 #include "specula/queries/queries.h"
 #include "specula/render/scene.h"
 #include "specula/render/scene_shader.h"
+#include "specula/sampling/check.h"
+#include "specula/sampling/sampler.h"
+#include "specula/sampling/seeds.h"
 
 namespace specula::serve {
 namespace {
@@ -55,6 +58,36 @@ std::string slice_endpoint(std::string_view body, const Limits& limits) {
     fail("theta_d", fmt::format("{} × {} angles exceed {} points per request", theta_h.size(), theta_d.size(),
                                 limits.max_eval_points));
   return io::to_json(queries::eval_half_difference(m, theta_h, theta_d, f.number_or("phi_d", 90), kKey));
+}
+
+std::string sampling_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "theta", "samples", "seed", "bins", "points"});
+  const Model m = queries::make(f.model(), kKey);
+  sampling::SamplingCheckOptions o;
+  const double theta = f.number_or("theta", 30);
+  if (!(theta >= 0 && theta < 90)) fail("theta", fmt::format("{} is outside [0, 90) degrees", theta));
+  o.theta_deg = {theta};
+  o.samples = static_cast<std::size_t>(f.integer_or("samples", 100'000, 1000, static_cast<std::int64_t>(limits.max_sampling_samples)));
+  o.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
+  o.cos_bins = static_cast<int>(f.integer_or("bins", 16, 4, 64));
+  const auto points = static_cast<std::size_t>(f.integer_or("points", 1000, 0, 10'000));
+  const sampling::Sampler sampler(m);
+  const sampling::AngleCheck a = sampling::check_sampling(sampler, o).angles.at(0);
+  nlohmann::json out{{"method", sampler.description()}, {"theta_deg", theta},   {"samples", o.samples},
+                     {"chi2", a.chi2},                  {"dof", a.dof},         {"p_value", a.p_value},
+                     {"alpha", a.alpha},                {"chi2_passes", a.chi2_passes()}, {"passes", a.passes()},
+                     {"mean_weight", a.mean_weight},    {"standard_error", a.standard_error}, {"albedo", a.albedo},
+                     {"cos_bins", o.cos_bins},          {"observed", a.observed}, {"expected", a.expected}};
+  // The first `points` directions the sampler draws (a stream of their own), for the hemisphere view.
+  sampling::SplitMixStream random(sampling::stream_key(o.seed, 1u << 20));
+  const Vec3 wi = from_spherical(radians(theta), 0.0);
+  nlohmann::json drawn = nlohmann::json::array();
+  for (std::size_t k = 0; k < points; ++k) {
+    const double u1 = random.uniform(), u2 = random.uniform();
+    if (const sampling::Sample s = sampler.sample(wi, u1, u2); s.valid()) drawn.push_back({s.wo.x, s.wo.y, s.wo.z});
+  }
+  out["points"] = std::move(drawn);
+  return out.dump();
 }
 
 std::string normalize_endpoint(std::string_view body, const Limits& limits) {

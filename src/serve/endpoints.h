@@ -12,6 +12,8 @@ std::string models_endpoint();
 std::string eval_endpoint(std::string_view body, const Limits& limits);
 /// f at Rusinkiewicz's half/difference angles: theta_h × theta_d at phi_d (default 90°).
 std::string slice_endpoint(std::string_view body, const Limits& limits);
+/// check --sampling at one angle: the χ² verdict, the observed and expected histograms, sampled directions.
+std::string sampling_endpoint(std::string_view body, const Limits& limits);
 std::string normalize_endpoint(std::string_view body, const Limits& limits);
 std::string albedo_endpoint(std::string_view body, const Limits& limits);
 std::string check_endpoint(std::string_view body, const Limits& limits);

@@ -17,7 +17,9 @@
 #include "specula/normalize/normalize.h"
 #include "specula/render/scene.h"
 #include "specula/render/scene_shader.h"
+#include "specula/sampling/check.h"
 #include "specula/sampling/estimators.h"
+#include "specula/sampling/sampler.h"
 
 namespace specula::serve {
 namespace {
@@ -118,6 +120,26 @@ TEST_F(ServeApi, SliceIsTheBrdfsValueAtTheHalfDifferenceAngles) {
   // θ_h = θ_d = 0 is L = V = N: the peak, as eval gives it at normal incidence.
   const json peak = ok("/api/eval", {{"model", "ggx"}, {"params", {{"alpha", 0.3}}}, {"theta_i", 0}, {"theta_o", {0}}});
   EXPECT_DOUBLE_EQ(values[0], column(peak, "value")[0]);
+}
+
+// The sampling view's data: check --sampling at one angle (its histograms and verdict, as the
+// library gives them) and directions the sampler draws, each in the upper hemisphere.
+TEST_F(ServeApi, SamplingIsTheChecksVerdictWithItsHistograms) {
+  const json c = ok("/api/sampling", {{"model", "ggx"}, {"params", {{"alpha", 0.3}}}, {"theta", 30}, {"samples", 20000},
+                                      {"bins", 8}, {"points", 100}});
+  sampling::SamplingCheckOptions o;
+  o.theta_deg = {30};
+  o.samples = 20000;
+  o.cos_bins = 8;
+  const sampling::AngleCheck a = sampling::check_sampling(sampling::Sampler(make_model("ggx", {{"alpha", 0.3}})), o).angles[0];
+  EXPECT_EQ(c["chi2"].get<double>(), a.chi2);
+  EXPECT_EQ(c["observed"].get<std::vector<double>>(), a.observed);
+  EXPECT_EQ(c["expected"].get<std::vector<double>>(), a.expected);
+  EXPECT_EQ(c["observed"].size(), 8u * 16u);
+  EXPECT_TRUE(c["passes"].get<bool>());
+  ASSERT_LE(c["points"].size(), 100u);  // draws that fall below the horizon are left out
+  ASSERT_GE(c["points"].size(), 80u);
+  for (const auto& p : c["points"]) EXPECT_GT(p[2].get<double>(), 0);
 }
 
 TEST_F(ServeApi, AlbedoIsTheCubaturesValue) {
@@ -268,6 +290,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"phi_d > 360", "/api/slice", R"({"model": "ggx", "theta_h": [5], "theta_d": [0], "phi_d": 361})", 400, "phi_d"},
         BadRequest{"no theta_d", "/api/slice", R"({"model": "ggx", "theta_h": [5]})", 400, "theta_d"},
         BadRequest{"a slice over its points", "/api/slice", R"({"model": "ggx", "theta_h": "0:90@101", "theta_d": "0:90@101"})", 400, "theta_d"},
+        BadRequest{"sampling at 90 degrees", "/api/sampling", R"({"model": "ggx", "theta": 90})", 400, "theta"},
+        BadRequest{"sampling with too few samples", "/api/sampling", R"({"model": "ggx", "samples": 10})", 400, "samples"},
         BadRequest{"theta = 90", "/api/albedo", R"({"model": "lambert", "theta": [90]})", 400, "theta"},
         BadRequest{"coef 0", "/api/albedo", R"({"model": "log-normalized", "coef": 0, "theta": [0]})", 400, "coef"},
         BadRequest{"coef on a full BRDF", "/api/albedo", R"({"model": "ggx", "coef": 2, "theta": [0]})", 400, "coef"},

@@ -247,6 +247,47 @@ TEST_F(Page, ThePlotSwitchesAndVisibilityReachEveryPlot) {
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#spheres canvas').length;"), 2);  // the spheres stay
 }
 
+// The lit sphere: a press on it brings the light from the direction of the sphere's point there —
+// at (½, ½) of the disc's radius, θ = 45°, φ = 45° — which moves the sliders and every view.
+TEST_F(Page, APressOnASphereMovesTheLightInEveryView) {
+  open(kState);
+  const std::string polar_before = browser_->run("return document.querySelector('#plot-polar line.incident').getAttribute('x2');").get<std::string>();
+  const int done = renders();
+  browser_->run(
+      "const c = document.getElementById('sphere-0'), b = c.getBoundingClientRect();"
+      "c.dispatchEvent(new PointerEvent('pointerdown', {clientX: b.left + 0.75 * b.width, clientY: b.top + 0.25 * b.height,"
+      "                                                 buttons: 1, bubbles: true}));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_EQ(state()["theta"], 45);
+  EXPECT_EQ(state()["phi"], 45);
+  EXPECT_EQ(browser_->run("return document.getElementById('light-theta').value;"), "45");
+  EXPECT_NE(browser_->run("return document.querySelector('#plot-polar line.incident').getAttribute('x2');").get<std::string>(),
+            polar_before);
+  expect_matches_cpu(0, make_model("log-normalized", {{"n", 50}}), 45, 45);
+}
+
+// The sampling view: the first model's sampler at the light's θ_i, its χ² verdict as the API
+// gives it, the histograms and the sampled directions drawn.
+TEST_F(Page, TheSamplingViewShowsTheChecksVerdict) {
+  json page = kState;
+  page["samplingSamples"] = 20000;
+  open(page);
+  const std::string verdict = browser_->run("return document.getElementById('sampling-verdict').textContent;").get<std::string>();
+  const json c = json::parse(specula::testing::post(server_.port(), "/api/sampling",
+                                  json{{"model", "log-normalized"}, {"params", {{"n", 50}}}, {"theta", 30}, {"samples", 20000},
+                                       {"bins", 16}, {"points", 1500}}.dump()).body);
+  EXPECT_THAT(verdict, HasSubstr(fmt::format("with {} degrees of freedom", c["dof"].get<int>())));
+  EXPECT_THAT(verdict, HasSubstr("passes"));
+  EXPECT_EQ(browser_->run("return document.getElementById('sampling-observed').width;"), 32);
+  // The observed heat map is not blank, and the disc has points on it.
+  EXPECT_GT(browser_->run("const c = document.getElementById('sampling-observed');"
+                          "return Math.max(...c.getContext('2d').getImageData(0, 0, c.width, c.height).data.filter((_, i) => i % 4 === 0));")
+                .get<int>(), 100);
+  EXPECT_GT(browser_->run("const c = document.getElementById('sampling-points');"
+                          "return c.getContext('2d').getImageData(0, 0, c.width, c.height).data.filter((v, i) => i % 4 === 0 && v === 255).length;")
+                .get<int>(), 50);
+}
+
 // The fit panel's tests fit k(n) at 10 values of n, not the paper's 50: the panel is what they
 // check, and a fit's cost under the sanitizers grows with the rows (58 s → 23 s for the two).
 // For the same reason the page's requests to /api/fit ask for the smallest search (one island of

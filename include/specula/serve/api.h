@@ -22,6 +22,7 @@ struct Limits {
   std::size_t max_eval_points = 10'000;   ///< cosines or viewer angles
   std::size_t max_albedo_angles = 200;
   std::uint64_t max_monte_carlo_samples = 10'000'000;  ///< samples × angles
+  std::size_t max_sampling_samples = 1'000'000;        ///< /api/sampling: its χ² test's samples
   std::size_t max_check_cases = 50;
   std::size_t max_check_pairs = 100'000;
   int max_image_side = 2048;              ///< the scene shader's uniforms (glsl with shader: true)
