@@ -74,7 +74,6 @@ CompensatedInfos& compensated_infos() {
   return c;
 }
 
-/// M with F = 1 where M has a Fresnel (its f0 set to 1), else M itself: whose table M+ms uses.
 /// M with F ≡ 1, the model of M's energy table: M itself at F0 = 1 where that makes F ≡ 1 (Schlick's
 /// F0, Cook-Torrance 1982's dielectric); else the first model of M's family (its Schlick F0 one:
 /// families/fresnel.h) at M's roughness and F0 = 1. M itself where it has no Fresnel.
