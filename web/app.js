@@ -10,6 +10,7 @@ import {setupDesign} from './design.js';
 import {setupEditor} from './editor.js';
 import {fetchSlices, drawSlices} from './slices.js';
 import {drawSampling} from './sampling.js';
+import {modelFile, settingsFile, readSettings} from './session.js';
 
 const $ = (id) => document.getElementById(id);
 let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null;
@@ -302,6 +303,25 @@ async function main() {
     $(id).checked = Boolean(state[key]);
     $(id).addEventListener('change', () => { state[key] = $(id).checked; schedule(); });
   }
+  $('session-save').addEventListener('click', () => {
+    const link = (name, text, type) => {
+      const a = Object.assign(document.createElement('a'), {href: URL.createObjectURL(new Blob([text], {type})), download: name, textContent: name});
+      a.id = `session-${name.split('.').pop()}`;
+      return a;
+    };
+    $('session-links').replaceChildren(link('specula-session.toml', modelFile(state), 'application/toml'), ' ',
+                                       link('specula-session.json', settingsFile(state), 'application/json'));
+  });
+  $('session-load').addEventListener('change', async () => {
+    try {
+      const loaded = readSettings(await $('session-load').files[0].text());
+      writeState({...defaultState(), ...loaded});
+      location.reload();
+    } catch (e) {
+      $('status').textContent = e.message;
+      $('status').className = 'error';
+    }
+  });
   $('sampling-samples').value = String(state.samplingSamples);
   $('sampling-samples').addEventListener('change', () => { state.samplingSamples = Number($('sampling-samples').value); schedule(); });
   $('albedo-estimator').value = state.estimator;
