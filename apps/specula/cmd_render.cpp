@@ -5,6 +5,7 @@
 #include <fmt/ranges.h>
 #include <iostream>
 #include <optional>
+#include <vector>
 #include <tbb/info.h>
 
 #include "cli.h"
@@ -55,10 +56,11 @@ render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o,
   std::vector<std::string> params;
   for (std::size_t i = 0; i < model.params().size(); ++i)
     params.push_back(fmt::format("{}={}", model.info().params[i].name, io::format_number(model.params()[i])));
-  if (o.model.per_channel()) params = o.model.params;  // as given: NAME=R,G,B
+  const std::string parameters = o.model.per_channel() ? fmt::format("{}", fmt::join(o.model.params, "; "))  // NAME=R,G,B
+                                                       : fmt::format("{}", fmt::join(params, ","));
   render::Metadata meta{{"Software", "specula"},
                         {"model", std::string(model.id())},
-                        {"parameters", fmt::format("{}", fmt::join(params, o.model.per_channel() ? "; " : ","))},
+                        {"parameters", parameters},
                         {"form", model.is_lobe() ? to_string(model.form()) : "-"}};
   if (model.is_lobe()) meta.emplace_back("coef", io::format_number(model.coef()));
   meta.insert(meta.end(), {{"renderer", o.backend}, {"scene", o.scene.mesh}, {"size", o.scene.size}});
@@ -120,26 +122,26 @@ SceneRender render_one(const RenderOptions& o, render::Backend backend,
   return {std::move(scene), std::move(rendered)};
 }
 
-/// A coloured material (ModelOptions::per_channel): one render per channel with that channel's
-/// model, each giving its channel of the image; the scene of channel 0 stands for the rest.
+/// A coloured material (ModelOptions::per_channel): the three channels' scenes first (a value out
+/// of range is refused before any render), then one render per channel, each giving its channel of
+/// the image; the scene of channel 0 stands for the rest.
 SceneRender render_per_channel(const RenderOptions& o, render::Backend backend,
-                                  const std::optional<render::Environment>& environment,
-                                  const render::RenderSettings& settings) {
-  std::optional<SceneRender> out;
+                               const std::optional<render::Environment>& environment,
+                               const render::RenderSettings& settings) {
+  std::vector<RenderOptions> channels(3, o);
+  std::vector<render::Scene> scenes;
   for (int c = 0; c < 3; ++c) {
-    RenderOptions channel = o;
-    channel.model = o.model.channel(c);
-    render::Scene scene = scene_of(channel);
-    Rendered rendered = render_on_backend(channel, backend, scene, environment, settings);
-    if (!out) {  // channel 0: its image, whose G and B the next channels replace
-      out.emplace(SceneRender{std::move(scene), std::move(rendered)});
-      continue;
-    }
-    auto to = out->rendered.image.samples();
-    const auto from = rendered.image.samples();
+    channels[c].model = o.model.channel(c);
+    scenes.push_back(scene_of(channels[c]));
+  }
+  Rendered image = render_on_backend(channels[0], backend, scenes[0], environment, settings);
+  for (int c = 1; c < 3; ++c) {  // G and B replaced by their channels' renders
+    const Rendered channel = render_on_backend(channels[c], backend, scenes[c], environment, settings);
+    auto to = image.image.samples();
+    const auto from = channel.image.samples();
     for (std::size_t k = static_cast<std::size_t>(c); k < to.size(); k += 3) to[k] = from[k];
   }
-  return std::move(*out);
+  return {std::move(scenes[0]), std::move(image)};
 }
 
 void run_render(const RenderOptions& o) {
@@ -151,7 +153,6 @@ void run_render(const RenderOptions& o) {
   const render::Backend backend = parse_backend(o.backend);
   const render::RenderSettings settings = o.scene.settings();
   const std::optional<render::Environment> environment = environment_of(o, backend, settings);
-  for (int c = 0; c < (o.model.per_channel() ? 3 : 0); ++c) o.model.channel(c).make();  // refuse before rendering
 
   const auto start = std::chrono::steady_clock::now();
   const SceneRender done = o.model.per_channel() ? render_per_channel(o, backend, environment, settings)
