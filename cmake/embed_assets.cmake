@@ -30,6 +30,8 @@ set(types_svg "image/svg+xml")
 set(types_png "image/png")
 set(types_json "application/json")
 set(types_txt "text/plain; charset=utf-8")
+set(types_obj "model/obj")
+set(types_exr "image/x-exr")
 
 set(arrays "")
 set(entries "")

@@ -11,9 +11,11 @@ import {setupEditor} from './editor.js';
 import {fetchSlices, drawSlices} from './slices.js';
 import {drawSampling} from './sampling.js';
 import {modelFile, settingsFile, readSettings} from './session.js';
+import {renderLit, setupLit} from './lit.js';
+import {LobeView} from './lobe3d.js';
 
 const $ = (id) => document.getElementById(id);
-let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null;
+let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null, litKey = '', lobe3d = null;
 const views = [];
 
 const info = (id) => catalogue.find((m) => m.id === id);
@@ -99,6 +101,7 @@ function modelCard(model, index) {
 function rebuild() {
   $('models').replaceChildren(...state.models.map(modelCard));
   $('add-model').disabled = state.models.length >= 4;
+  $('lit-model').replaceChildren(...state.models.map((m, i) => new Option(`${i + 1}: ${m.id}`, i, false, i === state.lit.model)));
   views.length = 0;
   $('spheres').replaceChildren(...state.models.map((m, i) => {
     const figure = document.createElement('figure');
@@ -219,6 +222,17 @@ async function drawPlots(ticket) {
   document.querySelector('#coefficients tbody').replaceChildren(...coefficients.map(tableRow));
 }
 
+/// BRDF Explorer's 3-D lobe: f over the outgoing hemisphere (/api/hemisphere), turned to the
+/// light's azimuth, through the plot switches.
+async function drawLobe3d(ticket) {
+  const models = state.models.map((m, i) => ({...m, colour: palette[i]})).filter((m) => !m.hidden);
+  const grids = await Promise.all(models.map((m) => api('/api/hemisphere', {model: ref(m), params: m.params, theta_i: state.theta})));
+  if (ticket !== generation) return;
+  const cosI = Math.cos((state.theta * Math.PI) / 180);
+  lobe3d.setData(grids.map((g, i) => ({colour: models[i].colour, thetaDeg: g.theta_o_deg, phiDeg: g.phi_o_deg.map((p) => p + state.phi),
+                                        values: g.values.map((row) => shown(row.map((v) => v ?? 0), cosI))})), lightDirection());
+}
+
 async function drawSliceViews(ticket) {
   const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i], hidden: m.hidden}))
     .filter((m) => !m.hidden);
@@ -247,6 +261,20 @@ function setupSliceControls() {
   }
 }
 
+/// The lit object's render restarts only when what it shows changes (not on a light move).
+function drawLit() {
+  const index = Math.min(state.lit.model, state.models.length - 1), m = state.models[index];
+  const key = JSON.stringify([ref(m), m.params, state.lit]);
+  if (key === litKey) return;
+  litKey = key;
+  renderLit({request: ref(m), params: m.params, name: m.id}, state.lit, showError);
+}
+
+function showError(e) {
+  $('status').textContent = e.message;
+  $('status').className = 'error';
+}
+
 function tableRow(cells) {
   const row = document.createElement('tr');
   for (const c of cells) row.append(Object.assign(document.createElement('td'), {textContent: typeof c === 'number' ? c.toPrecision(8) : c}));
@@ -273,7 +301,8 @@ async function update() {
   $('status').className = '';
   try {
     const first = state.models[0];
-    await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket),
+    drawLit();
+    await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket), drawLobe3d(ticket),
                        drawSampling({request: ref(first), params: first.params, name: first.id}, state.theta, state.samplingSamples)]);
     if (ticket !== generation) return;
     $('status').textContent = 'ready';
@@ -333,6 +362,10 @@ async function main() {
     schedule();
   });
   setupSliceControls();
+  lobe3d = new LobeView($('lobe3d'));
+  state.lit = {...defaultState().lit, ...state.lit};
+  setupLit(state.lit, schedule, showError);
+  $('lit-model').addEventListener('change', () => { state.lit.model = Number($('lit-model').value); schedule(); });
   setupFit(catalogue.filter((m) => m.kind === 'lobe'));
   setupDesign(catalogue.filter((m) => m.kind === 'lobe'), applyDefinition);
   edit = setupEditor(applyDefinition);

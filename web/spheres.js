@@ -1,21 +1,6 @@
 // One sphere per canvas in WebGL2, drawn by the scene shader the server emits for a model
 // (POST /api/glsl with shader: true): its vertex and fragment shaders and every uniform's value.
-function compile(gl, type, source) {
-  const shader = gl.createShader(type);
-  gl.shaderSource(shader, source);
-  gl.compileShader(shader);
-  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(shader));
-  return shader;
-}
-
-function link(gl, vertex, fragment) {
-  const program = gl.createProgram();
-  gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertex));
-  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragment));
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(program));
-  return program;
-}
+import {link} from './gl.js';
 
 // Sets one active uniform from the server's value (numbers, vectors, or arrays of vectors).
 function setUniform(gl, program, info, value) {

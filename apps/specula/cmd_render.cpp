@@ -27,6 +27,7 @@ struct RenderOptions {
   std::string env;  ///< empty: lit by the lights; "white" or an image file
   int samples = 64;
   std::uint64_t seed = 0;
+  std::string estimator = "mis";
   std::string out;
   bool verbose = false;
 };
@@ -67,7 +68,8 @@ render::Metadata metadata_of(const render::Scene& scene, const RenderOptions& o,
   const render::Metadata lit = scene_metadata(scene);
   meta.insert(meta.end(), lit.begin(), lit.end());
   if (!o.env.empty())
-    meta.insert(meta.end(), {{"environment", o.env}, {"samples", std::to_string(o.samples)}, {"seed", std::to_string(o.seed)}});
+    meta.insert(meta.end(), {{"environment", o.env}, {"samples", std::to_string(o.samples)}, {"seed", std::to_string(o.seed)},
+                                {"estimator", o.estimator}});
   if (!rendered.gl_renderer.empty()) meta.emplace_back("gl-renderer", rendered.gl_renderer);
   if (with_display)
     meta.insert(meta.end(), {{"exposure", io::format_number(o.scene.exposure)}, {"tonemap", o.scene.tone_map}});
@@ -92,7 +94,11 @@ std::optional<render::Environment> environment_of(const RenderOptions& o, render
 Rendered render_on_backend(const RenderOptions& o, render::Backend backend, const render::Scene& scene,
                            const std::optional<render::Environment>& environment,
                            const render::RenderSettings& settings) {
-  if (environment) return {render::render_environment(scene, *environment, settings, {o.samples, o.seed}), ""};
+  if (environment) {
+    const auto estimator = choice_named<render::EnvironmentEstimator, render::kEnvironmentEstimatorCount>(
+        "estimator", o.estimator, Spelling::option);
+    return {render::render_environment(scene, *environment, settings, {o.samples, o.seed, estimator}), ""};
+  }
   if (backend == render::Backend::cpu) return {render::render_cpu(scene, settings), ""};
   const gl::Context context;
   gl::Renderer renderer(context);
@@ -193,10 +199,15 @@ void add_render_command(CLI::App& app) {
                   "the white furnace; the material defaults to specular 1, no diffuse, no ambient) or a\n"
                   "latitude-longitude FILE.exr or FILE.png (row 0 up +y, the centre column toward -z); no --light");
   cmd->add_option("--samples", o->samples,
-                  "With --env: sample pairs per pixel (one BRDF + one environment sample, power heuristic),\n"
+                  "With --env: sample pairs per pixel (with mis, one BRDF + one environment sample),\n"
                   "[1, 65536], at most 2^26 in the image (1024x1024 at 64; about a minute)")->capture_default_str()->needs(env);
   cmd->add_option("--seed", o->seed, "With --env: the same seed gives the same image, whatever the thread count")
       ->capture_default_str()->needs(env);
+  cmd->add_option("--estimator", o->estimator,
+                  "With --env: how each pixel's integral is sampled, two directions per sample: uniform (no\n"
+                  "importance sampling), environment (light sampling), brdf (the model's sampler) or mis (one of\n"
+                  "each, power heuristic); all unbiased, they differ in noise")
+      ->capture_default_str()->needs(env)->check(one_of<render::EnvironmentEstimator, render::kEnvironmentEstimatorCount>());
   cmd->add_option("--out,-o", o->out, "Output image: FILE.png (8-bit sRGB) or FILE.exr (linear)")->required();
   cmd->add_flag("--verbose,-v", o->verbose, "Print the render and write times (and the GL renderer) to stderr");
   cmd->footer(

@@ -1,6 +1,8 @@
 // render_environment (render/environment.h): L_o by multiple importance sampling of the BRDF and of
 // the environment, one sample of each per pair, weighted by the power heuristic (Veach 1997 §9.2).
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -29,27 +31,44 @@ struct LocalFrame {
 
 class EnvironmentShader {
  public:
-  EnvironmentShader(const Scene& scene, const Environment& environment)
+  EnvironmentShader(const Scene& scene, const Environment& environment, EnvironmentEstimator estimator)
       : material_(scene.material), environment_(environment), geometry_(scene), sampler_(scene.material.model),
-        shadows_(geometry_.casts_shadows()) {}
+        shadows_(geometry_.casts_shadows()), estimator_(estimator) {}
 
   Rgb radiance(const Ray& ray, int samples, sampling::SplitMixStream& random) const noexcept {
     const auto hit = geometry_.closest(ray);
     if (!hit) return environment_.radiance(ray.direction);
-    const Vec3 v = -ray.direction;
     const LocalFrame local{Frame(hit->normal)};
-    const Vec3 v_local = local.to_local(v);
+    const Point at{*hit, -ray.direction, local, local.to_local(-ray.direction)};
     Rgb sum;
     for (int i = 0; i < samples; ++i) {
-      const double u1 = random.uniform(), u2 = random.uniform();
-      sum = sum + brdf_sample(*hit, v, local, v_local, u1, u2);
-      const double u3 = random.uniform(), u4 = random.uniform();
-      sum = sum + environment_sample(*hit, v, local, v_local, u3, u4);
+      const double u1 = random.uniform(), u2 = random.uniform(), u3 = random.uniform(), u4 = random.uniform();
+      sum = sum + sample_pair(at, u1, u2, u3, u4);
     }
     return material_.ambient_radiance() + sum * (1.0 / samples);
   }
 
  private:
+  struct Point {
+    const detail::SurfaceHit& hit;
+    Vec3 v;
+    LocalFrame local;
+    Vec3 v_local;
+  };
+
+  /// Two directions' contributions as the estimator draws them (their sum estimates twice the integral
+  /// for the single-strategy estimators, once for MIS's pair).
+  Rgb sample_pair(const Point& p, double u1, double u2, double u3, double u4) const noexcept {
+    switch (estimator_) {
+      case EnvironmentEstimator::uniform: return (uniform_sample(p, u1, u2) + uniform_sample(p, u3, u4)) * 0.5;
+      case EnvironmentEstimator::environment:
+        return (environment_only(p, u1, u2) + environment_only(p, u3, u4)) * 0.5;
+      case EnvironmentEstimator::brdf: return (brdf_only(p, u1, u2) + brdf_only(p, u3, u4)) * 0.5;
+      case EnvironmentEstimator::mis: break;
+    }
+    return brdf_sample(p, u1, u2) + environment_sample(p, u3, u4);
+  }
+
   /// L_env(ω) (ρ_s f(N, ω, V) + ρ_d/π) cos θ_ω where ω reaches the point; 0 where it is blocked.
   Rgb integrand(const detail::SurfaceHit& hit, const Vec3& l, const Vec3& v, const Rgb& incoming) const noexcept {
     const double cos_l = dot(hit.normal, l);
@@ -57,22 +76,60 @@ class EnvironmentShader {
     return incoming * material_.brdf(material_.model(hit.normal, l, v)) * cos_l;
   }
 
-  /// ω from the model's sampler with V as its ω_i: density sampler.pdf(V, ω).
-  Rgb brdf_sample(const detail::SurfaceHit& hit, const Vec3& v, const LocalFrame& local, const Vec3& v_local, double u1,
-                  double u2) const noexcept {
-    const sampling::Sample s = sampler_.sample(v_local, u1, u2);
-    if (!s.valid()) return {};
-    const Vec3 l = local.to_world(s.wo);
-    const double weight = weight_over_pdf(s.pdf, environment_.pdf(hit.normal, l));
-    return integrand(hit, l, v, environment_.radiance(l)) * weight;
+  /// ω uniform on the hemisphere about N: density 1/(2π).
+  Rgb uniform_sample(const Point& p, double u1, double u2) const noexcept {
+    const double z = u1, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * std::numbers::pi * u2;
+    const Vec3 l = p.local.to_world({r * std::cos(phi), r * std::sin(phi), z});
+    return integrand(p.hit, l, p.v, environment_.radiance(l)) * (2 * std::numbers::pi);
   }
 
-  Rgb environment_sample(const detail::SurfaceHit& hit, const Vec3& v, const LocalFrame& local, const Vec3& v_local,
-                         double u1, double u2) const noexcept {
-    const EnvironmentSample e = environment_.sample(hit.normal, u1, u2);
+  Rgb environment_only(const Point& p, double u1, double u2) const noexcept {
+    const EnvironmentSample e = environment_.sample(p.hit.normal, u1, u2);
     if (!(e.pdf > 0)) return {};
-    const double weight = weight_over_pdf(e.pdf, sampler_.pdf(v_local, local.to_local(e.direction)));
-    return integrand(hit, e.direction, v, e.radiance) * weight;
+    return integrand(p.hit, e.direction, p.v, e.radiance) * (1 / e.pdf);
+  }
+
+  /// The material's BRDF sampled as a one-sample mixture: the diffuse part's cosine lobe with the
+  /// diffuse share of the albedos (their channel means), else the model's sampler; the density is
+  /// the mixture's, so that directions only the diffuse part reflects are covered as well.
+  Rgb brdf_only(const Point& p, double u1, double u2) const noexcept {
+    const double share = diffuse_share();
+    Vec3 local_l;
+    if (u1 < share) {
+      const double u = u1 / share, r = std::sqrt(u), phi = 2 * std::numbers::pi * u2;
+      local_l = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u))};
+    } else {
+      const sampling::Sample s = sampler_.sample(p.v_local, (u1 - share) / (1 - share), u2);
+      if (!s.valid()) return {};
+      local_l = s.wo;
+    }
+    const double pdf = share * std::max(0.0, local_l.z) / std::numbers::pi +
+                       (1 - share) * sampler_.pdf(p.v_local, local_l);
+    if (!(pdf > 0)) return {};
+    const Vec3 l = p.local.to_world(local_l);
+    return integrand(p.hit, l, p.v, environment_.radiance(l)) * (1 / pdf);
+  }
+
+  double diffuse_share() const noexcept {
+    const auto mean = [](const Rgb& c) { return (c.r + c.g + c.b) / 3; };
+    const double d = mean(material_.diffuse), s = mean(material_.specular);
+    return d + s > 0 ? d / (d + s) : 0;
+  }
+
+  /// ω from the model's sampler with V as its ω_i: density sampler.pdf(V, ω), MIS-weighted.
+  Rgb brdf_sample(const Point& p, double u1, double u2) const noexcept {
+    const sampling::Sample s = sampler_.sample(p.v_local, u1, u2);
+    if (!s.valid()) return {};
+    const Vec3 l = p.local.to_world(s.wo);
+    const double weight = weight_over_pdf(s.pdf, environment_.pdf(p.hit.normal, l));
+    return integrand(p.hit, l, p.v, environment_.radiance(l)) * weight;
+  }
+
+  Rgb environment_sample(const Point& p, double u1, double u2) const noexcept {
+    const EnvironmentSample e = environment_.sample(p.hit.normal, u1, u2);
+    if (!(e.pdf > 0)) return {};
+    const double weight = weight_over_pdf(e.pdf, sampler_.pdf(p.v_local, p.local.to_local(e.direction)));
+    return integrand(p.hit, e.direction, p.v, e.radiance) * weight;
   }
 
   const Material& material_;
@@ -80,6 +137,7 @@ class EnvironmentShader {
   detail::Geometry geometry_;
   sampling::Sampler sampler_;
   bool shadows_;
+  EnvironmentEstimator estimator_;
 };
 
 void check_settings(const Scene& scene, const RenderSettings& size, const EnvironmentSettings& settings) {
@@ -108,7 +166,7 @@ Image render_environment(const Scene& scene, const Environment& environment, con
                          const EnvironmentSettings& settings) {
   check_settings(scene, size, settings);  // before the image: a refused size allocates nothing
   Image image(size.width, size.height);
-  const EnvironmentShader shader(scene, environment);
+  const EnvironmentShader shader(scene, environment, settings.estimator);
   const detail::PinholeRays rays(scene.camera, size.width, size.height);
   const auto shade_rows = [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "specula/exceptions.h"
@@ -180,14 +181,19 @@ Metadata png_metadata(png_structp png, png_infop info) {
   return metadata;
 }
 
+constexpr std::uint64_t kAnyPixels = std::uint64_t(kMaxImageSide) * kMaxImageSide;
+
 // The image a file declares, or the file's one-line error if its size is out of range.
-Image image_of_size(const std::filesystem::path& path, long long width, long long height) {
+Image image_of_size(const std::filesystem::path& path, long long width, long long height,
+                    std::uint64_t max_pixels = kAnyPixels) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
     cannot_read(path, fmt::format("image size {}x{} is outside [1, {}]", width, height, kMaxImageSide));
+  if (std::uint64_t(width) * std::uint64_t(height) > max_pixels)
+    cannot_read(path, fmt::format("image size {}x{} is more than the {} pixels allowed", width, height, max_pixels));
   return Image(static_cast<int>(width), static_cast<int>(height));
 }
 
-ImageFile decode_png(const std::filesystem::path& path, std::string_view bytes) {
+ImageFile decode_png(const std::filesystem::path& path, std::string_view bytes, std::uint64_t max_pixels = kAnyPixels) {
   if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
     cannot_read(path, "not a PNG file");
   PngReader reader;
@@ -195,7 +201,7 @@ ImageFile decode_png(const std::filesystem::path& path, std::string_view bytes) 
   PngImage header;
   if (!reader.info || !decode_header(reader.png, reader.info, &source, &header))
     cannot_read(path, reader.status.message);
-  ImageFile result{image_of_size(path, header.width, header.height), {}};
+  ImageFile result{image_of_size(path, header.width, header.height, max_pixels), {}};
   std::vector<std::uint8_t> pixels(result.image.samples().size());
   std::vector<png_bytep> rows = row_pointers(pixels, header.height);
   if (!decode_rows(reader.png, reader.info, {header.width, header.height, rows.data()}))
@@ -238,14 +244,14 @@ std::string encode_exr(const Image& image, ExrPixel pixel, const Metadata& metad
   return stream.str();
 }
 
-ImageFile decode_exr(const std::filesystem::path& path) {
-  Imf::InputFile file(path.c_str());
+ImageFile decode_exr(const std::filesystem::path& path, Imf::IStream& stream, std::uint64_t max_pixels = kAnyPixels) {
+  Imf::InputFile file(stream);
   const Imath::Box2i window = file.header().dataWindow();
   const long long width = 1LL + window.max.x - window.min.x, height = 1LL + window.max.y - window.min.y;
   const Imf::ChannelList& channels = file.header().channels();
   if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B"))
     cannot_read(path, "no R, G or B channel");
-  ImageFile result{image_of_size(path, width, height), {}};
+  ImageFile result{image_of_size(path, width, height, max_pixels), {}};
   const std::ptrdiff_t x_stride = 3 * sizeof(float), y_stride = x_stride * width;
   // The frame buffer is addressed in data-window coordinates, which may not start at 0.
   char* base = reinterpret_cast<char*>(result.image.samples().data()) -
@@ -307,9 +313,13 @@ ImageFile read_png(const std::filesystem::path& path) {
   return decode_png(path, io::read_file(path));
 }
 
-ImageFile read_exr(const std::filesystem::path& path) {
+/// decode_exr of the stream `open` makes, with OpenEXR's exceptions (a file that cannot be opened
+/// included) as the one-line error.
+template <class Open>
+ImageFile decode_exr_reporting(const std::filesystem::path& path, Open&& open, std::uint64_t max_pixels = kAnyPixels) {
   try {
-    return decode_exr(path);
+    const std::unique_ptr<Imf::IStream> stream = open();
+    return decode_exr(path, *stream, max_pixels);
   } catch (const InvalidArgument&) {
     throw;
   } catch (const std::exception& e) {  // OpenEXR's Iex exceptions
@@ -317,8 +327,32 @@ ImageFile read_exr(const std::filesystem::path& path) {
   }
 }
 
+ImageFile read_exr(const std::filesystem::path& path) {
+  return decode_exr_reporting(path, [&] { return std::make_unique<Imf::StdIFStream>(path.c_str()); });
+}
+
 ImageFile read_image(const std::filesystem::path& path) {
   return image_format(path) == ImageFormat::png ? read_png(path) : read_exr(path);
+}
+
+ImageFile decode_image(std::string_view bytes, std::string_view name, std::uint64_t max_pixels) {
+  const std::filesystem::path path(name);
+  constexpr std::string_view kExrMagic("\x76\x2f\x31\x01", 4);
+  if (bytes.starts_with(kExrMagic)) {
+    const auto open = [&] {
+      auto stream = std::make_unique<Imf::StdISStream>();
+      stream->str(std::string(bytes));
+      return stream;
+    };
+    return decode_exr_reporting(path, open, max_pixels);
+  }
+  if (bytes.size() >= 8 && png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) == 0)
+    return decode_png(path, bytes, max_pixels);
+  cannot_read(path, "neither a PNG nor an OpenEXR file");
+}
+
+std::string png_bytes(const Image& image, const Display& display) {
+  return encode_png(to_srgb8(image, display), image.width(), image.height(), {});
 }
 
 }  // namespace specula::render

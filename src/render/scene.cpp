@@ -97,8 +97,10 @@ void check_camera(const Camera& camera) {
 
 }  // namespace
 
-std::vector<Triangle> load_obj(const std::filesystem::path& path) {
-  const std::string text = io::read_file(path);
+std::vector<Triangle> load_obj(const std::filesystem::path& path) { return parse_obj(io::read_file(path), path.string()); }
+
+std::vector<Triangle> parse_obj(std::string_view text, std::string_view name) {
+  const std::filesystem::path path(name);
   tinyobj::ObjReaderConfig config;
   config.vertex_color = false;
   tinyobj::ObjReader reader;

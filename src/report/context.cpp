@@ -1,5 +1,7 @@
 #include "context.h"
 
+#include "specula/io/base64.h"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -66,21 +68,6 @@ std::string html_table(const std::vector<std::string>& header, const std::vector
   return out + "</tbody></table>\n";
 }
 
-// RFC 4648 base64 with padding.
-std::string base64(std::string_view bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
-    std::uint32_t chunk = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      chunk = chunk << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
-    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
-  }
-  return out;
-}
-
 std::string show(double value, int digits) {
   if (!std::isfinite(value)) return std::isnan(value) ? "—" : (value > 0 ? "∞" : "−∞");
   std::string text = fmt::format("{:.{}g}", value, digits);
@@ -127,7 +114,7 @@ std::string Context::svg_figure(const std::string& name, const std::string& svg,
 std::string Context::png_figure(const std::string& name, const std::string& png_bytes, const std::string& caption,
                                 const std::string& command, const std::string& data_links) {
   write(name + ".png", png_bytes);
-  const std::string img = fmt::format("<img src=\"data:image/png;base64,{}\" alt=\"{}\">\n", base64(png_bytes),
+  const std::string img = fmt::format("<img src=\"data:image/png;base64,{}\" alt=\"{}\">\n", io::base64(png_bytes),
                                       xml_escape(name));
   return figure(name, img, caption, command,
                 data_links + (data_links.empty() ? "" : ", ") + fmt::format("<a href=\"{0}.png\">{0}.png</a>", name));

@@ -32,7 +32,6 @@ std::string to_json(const DataTable& table);
 /// xml_escape, plot.h).
 std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                        const std::string& css_class = "");
-std::string base64(std::string_view bytes);
 
 /// A number the way the page shows it: `digits` significant digits, scientific when tiny or huge.
 std::string show(double value, int digits = 4);

@@ -12,8 +12,10 @@
 #include "assets.h"
 #include "endpoints.h"
 #include "design_job.h"
+#include "environment_job.h"
 #include "fit_job.h"
 #include "jobs.h"
+#include "uploads.h"
 #include "specula/exceptions.h"
 #include "specula/interrupt/interrupt.h"
 
@@ -35,16 +37,21 @@ struct Route {
   bool computed = false;  ///< runs library work: takes a place of Limits::max_busy_requests
 };
 
-/// The analysis endpoints, each a POST of a JSON object.
-std::vector<Route> analysis_routes(const Limits& limits) {
+constexpr std::string_view kUploadObj = "/api/upload/obj", kUploadProbe = "/api/upload/probe";
+
+/// The analysis endpoints, each a POST of a JSON object, and the uploads, each a POST of a file.
+std::vector<Route> analysis_routes(const Limits& limits, Uploads& uploads) {
   using Endpoint = std::string (*)(std::string_view, const Limits&);
   const std::pair<std::string_view, Endpoint> endpoints[] = {
       {"/api/eval", eval_endpoint},   {"/api/slice", slice_endpoint}, {"/api/normalize", normalize_endpoint},
       {"/api/albedo", albedo_endpoint}, {"/api/check", check_endpoint}, {"/api/error", error_endpoint},
-      {"/api/glsl", glsl_endpoint}, {"/api/sampling", sampling_endpoint}};
+      {"/api/glsl", glsl_endpoint}, {"/api/sampling", sampling_endpoint},
+      {"/api/hemisphere", hemisphere_endpoint}};
   std::vector<Route> routes{{"GET", "/api/models", [](const Request&) { return json(models_endpoint()); }}};
   for (const auto& [path, endpoint] : endpoints)
     routes.push_back({"POST", path, [endpoint, &limits](const Request& r) { return json(endpoint(r.body, limits)); }, true});
+  routes.push_back({"POST", kUploadObj, [&uploads](const Request& r) { return json(uploads.add_obj(r.body), 201); }, true});
+  routes.push_back({"POST", kUploadProbe, [&uploads](const Request& r) { return json(uploads.add_probe(r.body), 201); }, true});
   return routes;
 }
 
@@ -136,14 +143,18 @@ class Admission {
 struct Api::State {
   explicit State(const Limits& l)
       : limits(l),
+        uploads(limits),
         fits{"/api/fit", [this](std::string_view body) { return fit_job(body, limits); },
              Jobs("fit", limits.max_running_fits, limits.max_kept_fits, limits.stop_seconds)},
         designs{"/api/design", [this](std::string_view body) { return design_job(body, limits); },
                 Jobs("design", limits.max_running_designs, limits.max_kept_designs, limits.stop_seconds)},
-        routes(analysis_routes(limits)),
+        environments{"/api/environment", [this](std::string_view body) { return environment_job(body, limits, uploads); },
+                     Jobs("render", limits.max_running_environments, limits.max_kept_environments, limits.stop_seconds)},
+        routes(analysis_routes(limits, uploads)),
         admission(limits.max_busy_requests) {}
   const Limits limits;
-  JobRoutes fits, designs;
+  Uploads uploads;
+  JobRoutes fits, designs, environments;
   const std::vector<Route> routes;  ///< fixed routes; the jobs' routes are matched in route()
   Admission admission;
   std::atomic<bool> stopping{false};  ///< the cancel flag of every request's work limit
@@ -180,9 +191,9 @@ Response route(Api::State& state, const Request& request) {
   Request get_for_head;
   if (request.method == "HEAD") get_for_head = {"GET", request.path, request.body};
   const Request& r = request.method == "HEAD" ? get_for_head : request;
-  if (r.body.size() > state.limits.max_body_bytes)
-    return error_response(413, fmt::format("the body has {} bytes; at most {}", r.body.size(), state.limits.max_body_bytes), "body");
-  for (JobRoutes* kind : {&state.fits, &state.designs}) {
+  if (const std::size_t most = body_limit(state.limits, r.path); r.body.size() > most)
+    return error_response(413, fmt::format("the body has {} bytes; at most {}", r.body.size(), most), "body");
+  for (JobRoutes* kind : {&state.fits, &state.designs, &state.environments}) {
     if (r.path == kind->path) {
       if (r.method != "POST") return method_not_allowed(request, "POST");
       return admitted(state, [&] { return start_job(*kind, r); });
@@ -198,6 +209,10 @@ Response route(Api::State& state, const Request& request) {
 }
 
 }  // namespace
+
+std::size_t body_limit(const Limits& limits, std::string_view path) {
+  return path == kUploadObj || path == kUploadProbe ? limits.max_upload_bytes : limits.max_body_bytes;
+}
 
 Response error_response(int status, const std::string& message, const std::string& field) {
   const nlohmann::ordered_json body{{"error", message}, {"field", field.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(field)}};
@@ -215,6 +230,7 @@ const Limits& Api::limits() const noexcept { return state_->limits; }
 void Api::cancel_jobs() {
   state_->fits.jobs.cancel_all();
   state_->designs.jobs.cancel_all();
+  state_->environments.jobs.cancel_all();
 }
 
 void Api::stop() {

@@ -60,6 +60,29 @@ std::string slice_endpoint(std::string_view body, const Limits& limits) {
   return io::to_json(queries::eval_half_difference(m, theta_h, theta_d, f.number_or("phi_d", 90), kKey));
 }
 
+std::string hemisphere_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "theta_i", "theta_o", "phi_o"});
+  const Model m = queries::make(f.model(), kKey);
+  const double theta_i = f.number_or("theta_i", 30);
+  const auto theta_o = f.values_or("theta_o", "0:90@46", limits.max_eval_points);
+  const auto phi_o = f.values_or("phi_o", "0:355@72", limits.max_eval_points);
+  if (theta_o.size() * phi_o.size() > limits.max_eval_points)
+    fail("phi_o", fmt::format("{} × {} directions exceed {} points per request", theta_o.size(), phi_o.size(),
+                              limits.max_eval_points));
+  // f over the outgoing hemisphere, one row of φ_o values per θ_o (the 3-D lobe's surface).
+  nlohmann::json values = nlohmann::json::array();
+  for (std::size_t t = 0; t < theta_o.size(); ++t) values.push_back(nlohmann::json::array());
+  for (const double phi : phi_o) {
+    const io::Table column = queries::eval_at_directions(m, theta_i, theta_o, phi, kKey);
+    for (std::size_t t = 0; t < theta_o.size(); ++t) {
+      const double v = column.rows[t].back();
+      values[t].push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+    }
+  }
+  return nlohmann::json{{"model", std::string(m.id())}, {"theta_i_deg", theta_i}, {"theta_o_deg", theta_o},
+                        {"phi_o_deg", phi_o}, {"values", std::move(values)}}.dump();
+}
+
 std::string sampling_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "form", "coef", "theta", "samples", "seed", "bins", "points"});
   const Model m = queries::make(f.model(), kKey);

@@ -13,6 +13,9 @@ std::string eval_endpoint(std::string_view body, const Limits& limits);
 /// f at Rusinkiewicz's half/difference angles: theta_h × theta_d at phi_d (default 90°).
 std::string slice_endpoint(std::string_view body, const Limits& limits);
 /// check --sampling at one angle: the χ² verdict, the observed and expected histograms, sampled directions.
+/// f over the outgoing hemisphere at the incident θ_i: theta_o (default 0:90@46) × phi_o
+/// (default 0:355@72) in degrees, {"theta_o_deg", "phi_o_deg", "values": [[f per φ_o] per θ_o]}.
+std::string hemisphere_endpoint(std::string_view body, const Limits& limits);
 std::string sampling_endpoint(std::string_view body, const Limits& limits);
 std::string normalize_endpoint(std::string_view body, const Limits& limits);
 std::string albedo_endpoint(std::string_view body, const Limits& limits);

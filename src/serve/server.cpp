@@ -334,8 +334,8 @@ std::optional<Response> refuse_before_body(const httplib::Request& req, const Li
     return error_response(411, "send the body with Content-Length", "body");
   if (req.has_header("Content-Length")) {
     const std::uint64_t length = req.get_header_value<std::uint64_t>("Content-Length");
-    if (length > limits.max_body_bytes)
-      return error_response(413, fmt::format("the body has {} bytes; at most {}", length, limits.max_body_bytes), "body");
+    if (const std::size_t most = body_limit(limits, req.path); length > most)
+      return error_response(413, fmt::format("the body has {} bytes; at most {}", length, most), "body");
   }
   return std::nullopt;
 }
@@ -359,7 +359,7 @@ struct Server::Impl {
 
   void configure() {
     const Limits& limits = api.limits();
-    http.set_payload_max_length(limits.max_body_bytes);
+    http.set_payload_max_length(std::max(limits.max_body_bytes, limits.max_upload_bytes));
     // httplib's default sets SO_REUSEPORT, with which a second server binds the same port and
     // silently shares its connections; SO_REUSEADDR alone only allows a restart over TIME_WAIT.
     http.set_socket_options([](socket_t socket) {

@@ -122,6 +122,28 @@ TEST_F(ServeApi, SliceIsTheBrdfsValueAtTheHalfDifferenceAngles) {
   EXPECT_DOUBLE_EQ(values[0], column(peak, "value")[0]);
 }
 
+// The 3-D lobe's data: f over the outgoing hemisphere, one row per θ_o, as the model gives it at
+// (θ_o, φ_o) with L at θ_i and azimuth 0.
+TEST_F(ServeApi, HemisphereIsTheModelOverTheOutgoingDirections) {
+  const json t = ok("/api/hemisphere", {{"model", "ggx"}, {"params", {{"alpha", 0.3}}}, {"theta_i", 40},
+                                        {"theta_o", {0, 30, 60}}, {"phi_o", "0:270:90"}});
+  const Model m = make_model("ggx", {{"alpha", 0.3}});
+  ASSERT_EQ(t["values"].size(), 3u);
+  const Vec3 l = from_spherical(radians(40.0), 0.0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(t["values"][i].size(), 4u);
+    for (std::size_t j = 0; j < 4; ++j) {
+      const Vec3 v = from_spherical(radians(30.0 * i), radians(90.0 * j));
+      EXPECT_NEAR(t["values"][i][j].get<double>(), m({0, 0, 1}, l, v), 1e-12 * m({0, 0, 1}, l, v)) << i << " " << j;
+    }
+  }
+  // Its default grid: 2° in θ_o, 5° in φ_o.
+  const json grid = ok("/api/hemisphere", {{"model", "lambert"}});
+  EXPECT_EQ(grid["theta_o_deg"].size(), 46u);
+  EXPECT_EQ(grid["phi_o_deg"].size(), 72u);
+  EXPECT_EQ(grid["theta_i_deg"], 30);
+}
+
 // The sampling view's data: check --sampling at one angle (its histograms and verdict, as the
 // library gives them) and directions the sampler draws, each in the upper hemisphere.
 TEST_F(ServeApi, SamplingIsTheChecksVerdictWithItsHistograms) {
@@ -290,6 +312,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"phi_d > 360", "/api/slice", R"({"model": "ggx", "theta_h": [5], "theta_d": [0], "phi_d": 361})", 400, "phi_d"},
         BadRequest{"no theta_d", "/api/slice", R"({"model": "ggx", "theta_h": [5]})", 400, "theta_d"},
         BadRequest{"a slice over its points", "/api/slice", R"({"model": "ggx", "theta_h": "0:90@101", "theta_d": "0:90@101"})", 400, "theta_d"},
+        BadRequest{"a hemisphere over its points", "/api/hemisphere", R"({"model": "ggx", "theta_o": "0:90@101", "phi_o": "0:360@101"})", 400, "phi_o"},
+        BadRequest{"a hemisphere below the horizon", "/api/hemisphere", R"({"model": "ggx", "theta_i": 95})", 400, "theta_i"},
         BadRequest{"sampling at 90 degrees", "/api/sampling", R"({"model": "ggx", "theta": 90})", 400, "theta"},
         BadRequest{"sampling with too few samples", "/api/sampling", R"({"model": "ggx", "samples": 10})", 400, "samples"},
         BadRequest{"theta = 90", "/api/albedo", R"({"model": "lambert", "theta": [90]})", 400, "theta"},

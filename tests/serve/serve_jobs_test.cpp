@@ -77,17 +77,8 @@ TEST(ServeConcurrency, ParallelClientsGetTheSequentialAnswers) {
   EXPECT_EQ(compared, std::size_t{kThreads * kRequests});
 }
 
-/// Polls the job until `done(status)` holds or the job is no longer running; bounded.
 json poll(int port, std::int64_t id, const std::function<bool(const json&)>& done) {
-  json status;
-  for (int i = 0; i < 3000; ++i) {  // at most ~5 minutes under the sanitizers
-    const Answer a = get(port, fmt::format("/api/fit/{}", id));
-    if (a.status != 200) return json{{"http_status", a.status}, {"body", a.body}};
-    status = a.json();
-    if (done(status) || status["state"] != "running") return status;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return status;
+  return specula::testing::poll_job(port, fmt::format("/api/fit/{}", id), done);
 }
 
 std::int64_t start_fit(int port, const json& request) {

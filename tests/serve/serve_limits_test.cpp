@@ -195,13 +195,15 @@ TEST(ServeDeadline, EveryComputedEndpointStopsAtTheCap) {
   const std::string heavy_albedo = json{{"model", specula::testing::costly_oscillating()}, {"theta", "0:89@200"}}.dump();
   // 2000 k by quadrature of a lobe that takes some 0.1 s each: the start of a fit computes its data.
   const std::string heavy_fit = json{{"model", specula::testing::oscillating()}, {"n", "1:1000@2000"}}.dump();
+  // The log lobe's error takes ~0.12 s (release) at 2000 n; the oscillating lobe's k, ~0.1 s each.
+  const std::string heavy_error = json{{"model", specula::testing::oscillating()}, {"n", "1:1000@2000"}}.dump();
   const std::pair<const char*, const char*> heavy[] = {
       {"/api/check", kHeavyCheck.c_str()},
       {"/api/check", R"({"model": "ggx", "sweep": "alpha", "values": "0.1:0.9@50", "pairs": 100000, "step": 45})"},
       {"/api/albedo", heavy_albedo.c_str()},
       {"/api/albedo", R"({"model": "ggx", "theta": "0:80@10", "method": "monte-carlo", "samples": 1000000})"},
       {"/api/normalize", R"({"model": "gauss", "n": "1:1000@50", "condition": "strict", "step": 0.01})"},
-      {"/api/error", R"({"model": "log", "n": "1:10000@2000:log"})"},
+      {"/api/error", heavy_error.c_str()},
       {"/api/fit", heavy_fit.c_str()},
   };
   for (const auto& [path, body] : heavy) {

@@ -291,6 +291,90 @@ TEST_F(Page, TheSamplingViewShowsTheChecksVerdict) {
                 .get<int>(), 50);
 }
 
+/// How many of the canvas's pixels are red (r ≫ g ≈ b: not the amber of the incident line) and blue
+/// (b ≫ r, g).
+std::pair<int, int> red_and_blue_pixels(WebDriver& browser, const std::string& id) {
+  const json counts = browser.run(
+      "const c = document.getElementById(arguments[0]), copy = document.createElement('canvas');"
+      "copy.width = c.width; copy.height = c.height; const x = copy.getContext('2d'); x.drawImage(c, 0, 0);"
+      "const d = x.getImageData(0, 0, c.width, c.height).data; let red = 0, blue = 0;"
+      "for (let i = 0; i < d.length; i += 4) { if (d[i] > d[i + 1] + 40 && Math.abs(d[i + 1] - d[i + 2]) < 30) ++red;"
+      "  if (d[i + 2] > d[i] + 40 && d[i + 2] > d[i + 1] + 20) ++blue; }"
+      "return [red, blue];",
+      json::array({id}));
+  return {counts[0].get<int>(), counts[1].get<int>()};
+}
+
+// The 3-D lobe: one colour per model, scaled by the largest f the API gives over the hemisphere;
+// a drag turns it, the wheel zooms, and a new light angle reshapes it.
+TEST_F(Page, TheThreeDLobeShowsEveryModelAndTurnsWithTheMouse) {
+  open(kState);
+  EXPECT_GT(red_and_blue_pixels(*browser_, "lobe3d").first, 200);  // log-normalized, the larger lobe
+  double largest = 0;
+  for (const auto& [id, n] : {std::pair{"log-normalized", 50}, std::pair{"schlick", 20}}) {
+    const json grid = json::parse(specula::testing::post(server_.port(), "/api/hemisphere",
+                                                         json{{"model", id}, {"params", {{"n", n}}}, {"theta_i", 30}}.dump()).body);
+    for (const auto& row : grid["values"])
+      for (const auto& v : row) largest = std::max(largest, v.is_number() ? v.get<double>() : 0.0);
+  }
+  const auto shown = [&](const char* key) {
+    return std::stod(browser_->run(fmt::format("return document.getElementById('lobe3d').dataset.{};", key)).get<std::string>());
+  };
+  EXPECT_NEAR(shown("largest"), largest, 1e-9 * largest);
+  browser_->run(
+      "const c = document.getElementById('lobe3d'), b = c.getBoundingClientRect(), x = b.left + b.width / 2, y = b.top + b.height / 2;"
+      "c.dispatchEvent(new PointerEvent('pointerdown', {clientX: x, clientY: y, buttons: 1, bubbles: true}));"
+      "c.dispatchEvent(new PointerEvent('pointermove', {clientX: x + 40, clientY: y + 10, buttons: 1, bubbles: true}));"
+      "c.dispatchEvent(new PointerEvent('pointerup', {clientX: x + 40, clientY: y + 10, bubbles: true}));"
+      "c.dispatchEvent(new WheelEvent('wheel', {deltaY: 100, bubbles: true, cancelable: true}));");
+  EXPECT_NEAR(shown("yaw"), 10, 1e-9);
+  EXPECT_NEAR(shown("pitch"), 30, 1e-9);
+  EXPECT_NEAR(shown("distance"), 3.3, 1e-9);
+  const auto pixels = [&] {
+    return browser_->run("const c = document.getElementById('lobe3d'), copy = document.createElement('canvas');"
+                         "copy.width = c.width; copy.height = c.height; const x = copy.getContext('2d'); x.drawImage(c, 0, 0);"
+                         "return Array.from(x.getImageData(0, 0, c.width, c.height).data).join(',');").get<std::string>();
+  };
+  const std::string before = pixels();
+  int done = renders();
+  browser_->send_keys("#light-theta", std::string(kArrowLeft) + kArrowLeft + kArrowLeft + kArrowLeft + kArrowLeft);
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  EXPECT_NE(pixels(), before);  // θ_i = 25°: the lobes lean elsewhere
+  done = renders();
+  browser_->click("#visible-0");  // schlick alone: blue
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  const auto [red, blue] = red_and_blue_pixels(*browser_, "lobe3d");
+  EXPECT_LT(red, 10);
+  EXPECT_GT(blue, 200);
+}
+
+// The lit object: the server's progressive render reaches its sample count; a malformed OBJ upload
+// is refused in one line and the page goes on; a good one renders.
+TEST_F(Page, TheLitObjectRefinesItsImageAndTakesUploads) {
+  json page = kState;
+  page["lit"] = {{"model", 0}, {"obj", "sphere"}, {"probe", "furnace"}, {"estimator", "mis"}, {"samples", 64}, {"exposure", 0}};
+  open(page);
+  ASSERT_TRUE(browser_->wait_for("const i = document.getElementById('lit-image'); return i.dataset.state === 'done' && i.complete;"));
+  EXPECT_EQ(browser_->run("return document.getElementById('lit-image').dataset.samples;"), "64");
+  EXPECT_EQ(browser_->run("return document.getElementById('lit-image').naturalWidth;"), 160);
+  EXPECT_THAT(browser_->run("return document.getElementById('lit-counter').textContent;").get<std::string>(),
+              HasSubstr("64 of 64 samples per pixel"));
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto bad = dir / fmt::format("specula-bad-{}.obj", ::getpid()), good = dir / fmt::format("specula-good-{}.obj", ::getpid());
+  std::ofstream(bad) << "v 0 0 0\nf 1 2 3\n";
+  std::ofstream(good) << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nv 0 0 1\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 3 2\n";
+  browser_->send_keys("#lit-upload-obj", bad.string());
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('status').textContent.includes('refers to vertex 2');"));
+  EXPECT_EQ(browser_->run("return document.getElementById('lit-obj').value;"), "sphere");
+  browser_->send_keys("#lit-upload-obj", good.string());
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('lit-obj').value.startsWith('obj-');"));
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('lit-caption').textContent.includes('uploaded mesh')"
+                                 " && document.getElementById('lit-image').dataset.state === 'done';"));
+  std::filesystem::remove(bad);
+  std::filesystem::remove(good);
+  EXPECT_EQ(state()["lit"]["obj"].get<std::string>().substr(0, 4), "obj-");
+}
+
 // Saved sessions: the page's own models as a model file the CLI reads, the state as a settings
 // file; loading that file brings the page back as it was saved.
 TEST_F(Page, ASavedSessionIsAModelFileAndLoadsBackIdentically) {

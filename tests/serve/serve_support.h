@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <functional>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -216,6 +217,21 @@ inline nlohmann::json costly_oscillating() {
   const std::string sum = chain("+", 4091);
   return {{"kind", "lobe"}, {"form", "rv"}, {"let", {"a = " + sum, "b = " + sum}},
           {"lobe", "max(0, sin(1000*acos(c))) + 0*(a + b)"}, {"normalization", "none"}};
+}
+
+/// Polls the job at `path` ("/api/fit/3") every `ms` until `done(status)` holds or the job is no
+/// longer running; bounded (~5 minutes at 100 ms, room for the sanitizers).
+inline nlohmann::json poll_job(int port, const std::string& path, const std::function<bool(const nlohmann::json&)>& done,
+                               int ms = 100) {
+  nlohmann::json status;
+  for (int i = 0; i < 300'000 / ms; ++i) {
+    const Answer a = get(port, path);
+    if (a.status != 200) return nlohmann::json{{"http_status", a.status}, {"body", a.body}};
+    status = a.json();
+    if (done(status) || status["state"] != "running") return status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+  }
+  return status;
 }
 
 /// Seconds since `start`.

@@ -71,9 +71,33 @@ inline constexpr int kMaxEnvironmentSamples = 1 << 16;
 inline constexpr int kMaxEnvironmentImageSamplesLog2 = 26;
 inline constexpr std::uint64_t kMaxEnvironmentImageSamples = std::uint64_t{1} << kMaxEnvironmentImageSamplesLog2;
 
+/// How each pixel's integral over the environment is estimated (BRDF Explorer's choices for its
+/// lit-object view). Each sample draws two directions whatever the estimator, so that equal sample
+/// counts cost the same:
+///   uniform      both uniform on the hemisphere about N (no importance sampling), pdf 1/(2π)
+///   environment  both from the environment (light importance sampling)
+///   brdf         both from the material's BRDF (BRDF importance sampling): the diffuse part's cosine
+///                lobe or the model's sampler, chosen by their albedos' shares
+///   mis          one of each, combined by the power heuristic (β = 2, Veach 1997 §9.2)
+/// Each is unbiased; they differ in noise, which is what the lab's view shows.
+enum class EnvironmentEstimator { uniform, environment, brdf, mis };
+inline constexpr std::size_t kEnvironmentEstimatorCount = static_cast<std::size_t>(EnvironmentEstimator::mis) + 1;
+
+constexpr const char* to_string(EnvironmentEstimator e) noexcept {
+  switch (e) {
+    case EnvironmentEstimator::uniform: return "uniform";
+    case EnvironmentEstimator::environment: return "environment";
+    case EnvironmentEstimator::brdf: return "brdf";
+    case EnvironmentEstimator::mis: return "mis";
+  }
+  return "";
+}
+static_assert(names_complete<EnvironmentEstimator, kEnvironmentEstimatorCount>([](EnvironmentEstimator e) { return to_string(e); }));
+
 struct EnvironmentSettings {
-  int samples = 64;        ///< per pixel: each one BRDF sample and one environment sample
+  int samples = 64;        ///< per pixel, each of two directions (see EnvironmentEstimator)
   std::uint64_t seed = 0;  ///< the pixel's random numbers depend on (seed, pixel index) alone
+  EnvironmentEstimator estimator = EnvironmentEstimator::mis;
 };
 
 /// InvalidField "samples" for samples outside [1, kMaxEnvironmentSamples] or beyond
@@ -84,9 +108,10 @@ void check_samples(const RenderSettings& size, const EnvironmentSettings& settin
 /// The linear radiance image of `scene` lit by `environment` alone (the scene's lights must be
 /// empty). Per pixel, the nearest surface along the ray through its centre shows
 ///   L_o(V) = ambient·ρ_d + ∫ L_env(ω) (ρ_s f(N, ω, V) + ρ_d/π) cos θ_ω vis(ω) dω,
-/// estimated from `samples` pairs of one sample of the model's sampler (sampling::Sampler, drawn
-/// with V as its ω_i, weighted by its pdf(V, ω); f(N, L = ω, V) evaluated as such) and one of the
-/// environment, combined by the power heuristic (β = 2, Veach 1997 §9.2). vis(ω) = 0 where the
+/// estimated from `samples` pairs of directions drawn as settings.estimator says; with mis (the
+/// default) one sample of the model's sampler (sampling::Sampler, drawn with V as its ω_i, weighted
+/// by its pdf(V, ω); f(N, L = ω, V) evaluated as such) and one of the environment, combined by the
+/// power heuristic (β = 2, Veach 1997 §9.2). vis(ω) = 0 where the
 /// scene blocks ω (the renderers' shadow rays); a ray that hits nothing shows L_env of its
 /// direction. Deterministic for a seed and bit-identical for any thread count. Throws
 /// InvalidArgument for a bad size or scene, lights in it, or samples outside

@@ -64,5 +64,14 @@ ImageFile read_png(const std::filesystem::path& path);
 ImageFile read_exr(const std::filesystem::path& path);
 /// read_png or read_exr by extension.
 ImageFile read_image(const std::filesystem::path& path);
+/// A PNG or OpenEXR file's bytes, told apart by their signatures (an upload's), read as read_png and
+/// read_exr read files; `name` stands for the path in the messages. Throws InvalidArgument "cannot
+/// read 'name': …" for other bytes or an image of more than `max_pixels` pixels (checked from the
+/// header, before any pixel is decoded).
+ImageFile decode_image(std::string_view bytes, std::string_view name,
+                       std::uint64_t max_pixels = std::uint64_t(kMaxImageSide) * kMaxImageSide);
+
+/// The image as a PNG file's bytes: 8-bit sRGB through `display`, no metadata.
+std::string png_bytes(const Image& image, const Display& display);
 
 }  // namespace specula::render

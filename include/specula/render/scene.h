@@ -38,6 +38,8 @@ struct Triangle {
 /// groups, lines, points and skin weights are ignored. Throws InvalidArgument ("cannot read …")
 /// for a missing or unreadable file, an index out of range, or a file with no triangle.
 std::vector<Triangle> load_obj(const std::filesystem::path& path);
+/// load_obj of an OBJ file's text (an upload's), `name` standing for the path in the messages.
+std::vector<Triangle> parse_obj(std::string_view text, std::string_view name);
 
 /// A pinhole camera; the vertical field of view spans the image height.
 struct Camera {

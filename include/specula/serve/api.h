@@ -2,13 +2,14 @@
 // The JSON API of `specula serve` without the HTTP transport: a request (method, path, body) in,
 // a response (status, content type, body) out. Every /api response is JSON; errors are
 // {"error": "...", "field": "..."} with 400 (bad field), 404 (unknown route or job), 405 (wrong
-// method), 413 (body too large), 429 (too many fit or design jobs) or 503 (busy, past the request's time
+// method), 413 (body too large), 429 (too many fit, design or render jobs) or 503 (busy, past the request's time
 // cap, or stopping). Any other path is one of the page's assets compiled into the binary, or 404.
 // See docs/serve.md.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -40,6 +41,16 @@ struct Limits {
   std::size_t max_running_designs = 1;
   std::size_t max_kept_designs = 4;
   double design_grace_seconds = 300;      ///< past its screening: finishing, timing, checks (one core)
+  // The lit-object view: uploads (POST /api/upload/obj, /api/upload/probe) and its render jobs.
+  std::size_t max_upload_bytes = 8 * 1024 * 1024;  ///< the body of an upload (others: max_body_bytes)
+  std::size_t max_upload_triangles = 200'000;
+  std::uint64_t max_probe_pixels = 2048 * 1024;
+  std::size_t max_kept_uploads = 8;       ///< meshes and probes each; older ones are dropped
+  int max_environment_side = 256;         ///< the image's width and height
+  int max_environment_samples = 1024;     ///< per pixel, the job's target
+  std::size_t max_running_environments = 2;
+  std::size_t max_kept_environments = 4;
+  double environment_seconds = 120;       ///< a render job's work limit
 
   // Time and concurrency: no request, connection or client holds the server.
   double request_seconds = 5;             ///< the work of one request; then 503 and its thread is free
@@ -65,6 +76,10 @@ struct Response {
   std::string body;
   std::vector<std::pair<std::string, std::string>> headers;
 };
+
+/// The most bytes a request's body to `path` may have: max_upload_bytes for the uploads, else
+/// max_body_bytes.
+std::size_t body_limit(const Limits& limits, std::string_view path);
 
 /// {"error": message, "field": field} (field left out when empty) with `status`.
 Response error_response(int status, const std::string& message, const std::string& field = {});
