@@ -13,6 +13,8 @@ import {drawSampling} from './sampling.js';
 import {modelFile, settingsFile, readSettings} from './session.js';
 import {renderLit, setupLit} from './lit.js';
 import {LobeView} from './lobe3d.js';
+import {drawCompensation} from './compensation.js';
+import {channelApi, channelIndex, channelParams, hasRgb, kChannels} from './channels.js';
 
 const $ = (id) => document.getElementById(id);
 let catalogue = [], state = readState(), pending = null, generation = 0, edit = null, slices = null, litKey = '', lobe3d = null;
@@ -82,20 +84,39 @@ function modelCard(model, index) {
   card.append(header);
   for (const p of infoOf(model).params) {
     const value = model.params[p.name] ?? p.default;
-    const id = `param-${index}-${p.name}`;
-    const label = Object.assign(document.createElement('label'), {htmlFor: id});
-    const output = Object.assign(document.createElement('output'), {textContent: value});
-    label.append(`${p.name} = `, output);
-    const slider = Object.assign(document.createElement('input'), {type: 'range', id, min: 0, max: 1000, step: 1});
-    slider.value = toSlider(p, value);
-    slider.addEventListener('input', () => {
-      model.params[p.name] = fromSlider(p, Number(slider.value));
-      output.textContent = model.params[p.name];
-      schedule();
+    const rgb = Array.isArray(value);
+    const toggle = Object.assign(document.createElement('input'), {type: 'checkbox', id: `param-rgb-${index}-${p.name}`, checked: rgb});
+    toggle.addEventListener('change', () => {
+      const v = model.params[p.name] ?? p.default;
+      model.params[p.name] = toggle.checked ? [v, v, v] : v[1];
+      rebuild();
     });
-    card.append(label, slider);
+    const toggleLabel = Object.assign(document.createElement('label'), {htmlFor: toggle.id, className: 'inline', textContent: `${p.name} per channel (R, G, B)`});
+    if (rgb) kChannels.forEach((_, c) => card.append(...paramSlider(model, index, p, c)));
+    else card.append(...paramSlider(model, index, p));
+    card.append(toggle, toggleLabel);
   }
   return card;
+}
+
+/// A parameter's label and slider; with `channel` (0, 1, 2), one channel of an [R, G, B] value.
+function paramSlider(model, index, p, channel) {
+  const per = channel !== undefined, suffix = per ? `-${kChannels[channel]}` : '';
+  const current = () => (per ? model.params[p.name][channel] : model.params[p.name] ?? p.default);
+  const id = `param-${index}-${p.name}${suffix}`;
+  const label = Object.assign(document.createElement('label'), {htmlFor: id});
+  const output = Object.assign(document.createElement('output'), {textContent: current()});
+  label.append(`${p.name}${per ? ` (${kChannels[channel].toUpperCase()})` : ''} = `, output);
+  const slider = Object.assign(document.createElement('input'), {type: 'range', id, min: 0, max: 1000, step: 1});
+  slider.value = toSlider(p, current());
+  slider.addEventListener('input', () => {
+    const v = fromSlider(p, Number(slider.value));
+    if (per) model.params[p.name][channel] = v;
+    else model.params[p.name] = v;
+    output.textContent = v;
+    schedule();
+  });
+  return [label, slider];
 }
 
 function rebuild() {
@@ -146,14 +167,32 @@ const lightDirection = () => {
   return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
 };
 const shaderRequest = (m) => ({model: ref(m), params: m.params, shader: true, light: lightDirection(), size: [state.size, state.size]});
+const nextTask = () => new Promise((resolve) => setTimeout(resolve));
+
+/// A request in the page's channel (channels.js): per channel where a parameter holds [R, G, B].
+const capi = (path, body) => channelApi(path, body, state.channel);
+/// The parameters a non-linear view (the sampler, the lit object) uses in the page's channel.
+const viewParams = (m) => (hasRgb(m.params) ? channelParams(m.params, channelIndex(state.channel)) : m.params);
 const lobeParams = (m) => Object.fromEntries(Object.entries(m.params).filter(([k]) => k !== 'n'));
 
 async function drawSpheres(ticket) {
-  const answers = await Promise.all([...state.models, {id: state.reference, params: {}}].map((m) => api('/api/glsl', shaderRequest(m))));
+  const shaders = (m) => (hasRgb(m.params)
+    ? Promise.all(kChannels.map((_, c) => api('/api/glsl', shaderRequest({...m, params: channelParams(m.params, c)}))))
+    : api('/api/glsl', shaderRequest(m)));
+  const answers = await Promise.all([...state.models, {id: state.reference, params: {}}].map(shaders));
+  // One sphere per task (SwiftShader takes tens of ms each): input is handled between them.
+  for (const [i, answer] of answers.entries()) {
+    if (ticket !== generation) return;
+    const view = i < state.models.length ? views[i] : views.reference;
+    if (!view) return;  // the cards were rebuilt meanwhile
+    if (Array.isArray(answer)) await view.drawChannels(answer, nextTask);
+    else view.draw(answer);
+    await nextTask();
+  }
+  const first = views[0].pixels();
+  await nextTask();
   if (ticket !== generation) return;
-  state.models.forEach((m, i) => views[i].draw(answers[i]));
-  views.reference.draw(answers[answers.length - 1]);
-  const max = drawDifference($('difference'), views[0].pixels(), views.reference.pixels(), state.size, state.size);
+  const max = drawDifference($('difference'), first, views.reference.pixels(), state.size, state.size);
   $('difference-caption').textContent = `|ΔL| of ${state.models[0].id} against ${state.reference}: max ${max.toPrecision(3)}`;
 }
 
@@ -170,20 +209,20 @@ async function drawPlots(ticket) {
   const degrees = Array.from({length: 90}, (_, i) => i);
   const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id})).filter((m) => !m.hidden);
   const lobe = await Promise.all(models.map(async (m) => isLobe(m)
-    ? {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
-    : {...m, xs: degrees, ys: column(await api('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
+    ? {...m, xs: degrees, ys: column(await capi('/api/eval', {model: ref(m), params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
+    : {...m, xs: degrees, ys: column(await capi('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
   const polar = await Promise.all(models.map(async (m) => {
-    const at = (phi) => api('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
+    const at = (phi) => capi('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
     const [away, toward] = await Promise.all([at(180), at(0)]);
     return {...m, degrees: [...degrees.map((d) => d).reverse(), ...degrees.map((d) => -d)],
             values: [...column(away, 'value').reverse(), ...column(toward, 'value')]};
   }));
   const thetas = '0:85:5,89';
   const albedo = (await Promise.all(models.map(async (m) => {
-    const t = await api('/api/albedo', {model: ref(m), params: m.params, theta: thetas});
+    const t = await capi('/api/albedo', {model: ref(m), params: m.params, theta: thetas});
     const exact = {...m, xs: column(t, 'theta_deg'), ys: column(t, 'albedo')};
     if (!state.estimator) return [exact];
-    const e = await api('/api/albedo', {model: ref(m), params: m.params, theta: thetas, method: state.estimator, samples: state.samples});
+    const e = await capi('/api/albedo', {model: ref(m), params: m.params, theta: thetas, method: state.estimator, samples: state.samples});
     const band = (sign) => ({...m, dashed: true, xs: column(e, 'theta_deg'),
                              ys: e.rows.map((r) => r.albedo + sign * 2 * r.standard_error)});
     return [exact, band(-1), band(1)];
@@ -191,24 +230,24 @@ async function drawPlots(ticket) {
   // E(μ) of each model and, for a catalogue model, of M+ms (models/compensated.h), against μ.
   const energy = (await Promise.all(models.map(async (m) => {
     const curve = async (request, dashed) => {
-      const t = await api('/api/albedo', {model: request, params: m.params, theta: thetas});
+      const t = await capi('/api/albedo', {model: request, params: m.params, theta: thetas});
       return {...m, dashed, xs: column(t, 'theta_deg').map((d) => Math.cos((d * Math.PI) / 180)), ys: column(t, 'albedo')};
     };
     return m.definition ? [await curve(ref(m), false)] : Promise.all([curve(m.id, false), curve(`${m.id}+ms`, true)]);
   }))).flat();
   const error = isLobe({id: state.reference}) ? await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
-    const t = await api('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: errorRange(m)});
+    const t = await capi('/api/error', {model: ref(m), params: lobeParams(m), reference: state.reference, n: errorRange(m)});
     return {...m, xs: column(t, 'n'), ys: column(t, 'max_abs')};
   })) : [];
   const coefficients = await Promise.all(models.filter((m) => isLobe(m) && hasN(m)).map(async (m) => {
-    const used = await api('/api/eval', {model: ref(m), params: m.params, cos: [1]});
+    const used = await capi('/api/eval', {model: ref(m), params: m.params, cos: [1]});
     const logLobe = !m.definition && m.id.startsWith('log');  // the paper fitted k(n) for the log lobe only
-    const exact = await api('/api/normalize', {model: ref(m), params: lobeParams(m), n: [m.params.n ?? infoOf(m).params[0].default],
+    const exact = await capi('/api/normalize', {model: ref(m), params: lobeParams(m), n: [m.params.n ?? infoOf(m).params[0].default],
                                                ...(logLobe ? {compare: 'log-paper'} : {})});
     return [m.id, Number(used.coef), column(exact, 'coef')[0], logLobe ? column(exact, 'coef_compare')[0] : '-'];
   }));
   // A coarse check (fewer pairs, a 5° grid) keeps each update quick.
-  const checks = await Promise.all(models.map(async (m) => [m.id, (await api('/api/check', {model: ref(m), params: m.params, pairs: 1000, step: 5}))[0]]));
+  const checks = await Promise.all(models.map(async (m) => [m.id, (await capi('/api/check', {model: ref(m), params: m.params, pairs: 1000, step: 5}))[0]]));
   if (ticket !== generation) return;
   const cosI = Math.cos((state.theta * Math.PI) / 180);
   const label = (y) => (state.logPlot ? `log10(${y}${state.timesCos ? ' · N·L' : ''} + 1)` : `${y}${state.timesCos ? ' · N·L' : ''}`);
@@ -226,7 +265,7 @@ async function drawPlots(ticket) {
 /// light's azimuth, through the plot switches.
 async function drawLobe3d(ticket) {
   const models = state.models.map((m, i) => ({...m, colour: palette[i]})).filter((m) => !m.hidden);
-  const grids = await Promise.all(models.map((m) => api('/api/hemisphere', {model: ref(m), params: m.params, theta_i: state.theta})));
+  const grids = await Promise.all(models.map((m) => capi('/api/hemisphere', {model: ref(m), params: m.params, theta_i: state.theta})));
   if (ticket !== generation) return;
   const cosI = Math.cos((state.theta * Math.PI) / 180);
   lobe3d.setData(grids.map((g, i) => ({colour: models[i].colour, thetaDeg: g.theta_o_deg, phiDeg: g.phi_o_deg.map((p) => p + state.phi),
@@ -236,7 +275,7 @@ async function drawLobe3d(ticket) {
 async function drawSliceViews(ticket) {
   const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i], hidden: m.hidden}))
     .filter((m) => !m.hidden);
-  const fetched = await fetchSlices(models, state.slice);
+  const fetched = await fetchSlices(models, state.slice, capi);
   if (ticket !== generation) return;
   slices = fetched;
   drawSlices(slices, state.slice, shown);
@@ -264,10 +303,10 @@ function setupSliceControls() {
 /// The lit object's render restarts only when what it shows changes (not on a light move).
 function drawLit() {
   const index = Math.min(state.lit.model, state.models.length - 1), m = state.models[index];
-  const key = JSON.stringify([ref(m), m.params, state.lit]);
+  const key = JSON.stringify([ref(m), viewParams(m), state.lit]);
   if (key === litKey) return;
   litKey = key;
-  renderLit({request: ref(m), params: m.params, name: m.id}, state.lit, showError);
+  renderLit({request: ref(m), params: viewParams(m), name: m.id}, state.lit, showError);
 }
 
 function showError(e) {
@@ -302,8 +341,10 @@ async function update() {
   try {
     const first = state.models[0];
     drawLit();
+    const shownModels = state.models.filter((m) => !m.hidden && !m.definition).map((m) => ({request: ref(m), params: viewParams(m), name: m.id}));
     await Promise.all([drawSpheres(ticket), drawPlots(ticket), drawSliceViews(ticket), drawLobe3d(ticket),
-                       drawSampling({request: ref(first), params: first.params, name: first.id}, state.theta, state.samplingSamples)]);
+                       drawCompensation(shownModels, $('plot-compensation'), $('compensation-caption'), () => ticket === generation),
+                       drawSampling({request: ref(first), params: viewParams(first), name: first.id}, state.theta, state.samplingSamples)]);
     if (ticket !== generation) return;
     $('status').textContent = 'ready';
     document.body.dataset.renders = String(Number(document.body.dataset.renders || 0) + 1);
@@ -332,6 +373,8 @@ async function main() {
     $(id).checked = Boolean(state[key]);
     $(id).addEventListener('change', () => { state[key] = $(id).checked; schedule(); });
   }
+  $('channel').value = state.channel;
+  $('channel').addEventListener('change', () => { state.channel = $('channel').value; schedule(); });
   $('session-save').addEventListener('click', () => {
     const link = (name, text, type) => {
       const a = Object.assign(document.createElement('a'), {href: URL.createObjectURL(new Blob([text], {type})), download: name, textContent: name});

@@ -30,9 +30,10 @@ function drawImage(canvas, values, exposure, gamma) {
 
 /// The section's views for `models` ({request, params, name, colour}); `settings` holds theta_h,
 /// theta_d, phi_d (degrees), exposure (stops) and gamma. Returns what redraw() needs to show a new
-/// exposure or gamma without asking the server again.
-export async function fetchSlices(models, settings) {
-  const at = (m, theta_h, theta_d) => api('/api/slice', {model: m.request, params: m.params, theta_h, theta_d, phi_d: settings.phi_d});
+/// exposure or gamma without asking the server again. `ask` sends a request (api, or the page's
+/// channel's).
+export async function fetchSlices(models, settings, ask = api) {
+  const at = (m, theta_h, theta_d) => ask('/api/slice', {model: m.request, params: m.params, theta_h, theta_d, phi_d: settings.phi_d});
   return Promise.all(models.map(async (m) => {
     const [alongH, alongD, image] = await Promise.all([
       at(m, degrees, [settings.theta_d]), at(m, [settings.theta_h], degrees), at(m, pixelAngles, pixelAngles)]);

@@ -18,12 +18,27 @@ function setUniform(gl, program, info, value) {
   }
 }
 
+// A full-screen triangle showing a texture's texels one to one, row 0 at the top.
+const kQuadVertex = `#version 300 es
+out vec2 uv;
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  uv = 0.5 * p + 0.5;
+  gl_Position = vec4(p, 0.0, 1.0);
+}`;
+const kQuadFragment = `#version 300 es
+precision highp float;
+in vec2 uv;
+uniform sampler2D image;
+out vec4 colour;
+void main() { colour = texture(image, vec2(uv.x, 1.0 - uv.y)); }`;
+
 export class SphereView {
   constructor(canvas) {
     this.canvas = canvas;
     this.gl = canvas.getContext('webgl2', {preserveDrawingBuffer: true, antialias: false});
     if (!this.gl) throw new Error('this browser has no WebGL2');
-    this.source = null;
+    this.programs = new Map();  // by source: a model's channels (and a slider's back and forth) compile once
   }
 
   draw(answer) {
@@ -31,11 +46,18 @@ export class SphereView {
     const [width, height] = answer.uniforms.u_resolution;
     this.canvas.width = width;
     this.canvas.height = height;
-    const source = answer.vertex_shader + answer.fragment_shader;
-    if (source !== this.source) {
-      this.program = link(gl, answer.vertex_shader, answer.fragment_shader);
-      this.source = source;
+    // Keyed without comments: the server's header comment lists the uniforms' values, which change
+    // with every parameter while the program does not.
+    const source = (answer.vertex_shader + answer.fragment_shader).replace(/\/\/[^\n]*/g, '');
+    if (!this.programs.has(source)) {
+      if (this.programs.size >= 8) {  // SwiftShader compiles a sphere's shader in 50-200 ms: keep the last few
+        const [oldest, program] = this.programs.entries().next().value;
+        gl.deleteProgram(program);
+        this.programs.delete(oldest);
+      }
+      this.programs.set(source, link(gl, answer.vertex_shader, answer.fragment_shader));
     }
+    this.program = this.programs.get(source);
     gl.viewport(0, 0, width, height);
     gl.useProgram(this.program);
     const count = gl.getProgramParameter(this.program, gl.ACTIVE_UNIFORMS);
@@ -44,6 +66,40 @@ export class SphereView {
       setUniform(gl, this.program, info, answer.uniforms[info.name.replace(/\[0\]$/, '')]);
     }
     gl.drawArrays(gl.TRIANGLES, 0, 3);
+  }
+
+  /// A sphere whose parameters differ per channel (`render -p NAME=R,G,B`): each channel of the
+  /// image from the render of that channel's parameters (answers: the three channels' /api/glsl),
+  /// drawn on a scratch canvas, `pause()` awaited after each so that input is handled between them.
+  async drawChannels(answers, pause) {
+    this.scratch ??= new SphereView(document.createElement('canvas'));
+    const images = [];
+    for (const answer of answers) {
+      this.scratch.draw(answer);
+      images.push(this.scratch.pixels());
+      await pause();
+    }
+    [this.canvas.width, this.canvas.height] = answers[0].uniforms.u_resolution;
+    const composite = new Uint8Array(images[0].length);
+    for (let i = 0; i < composite.length; ++i) composite[i] = i % 4 === 3 ? 255 : images[i % 4][i];
+    this.show(composite);
+  }
+
+  /// Shows RGBA bytes (row 0 at the top) as they are.
+  show(rgba) {
+    const gl = this.gl, {width, height} = this.canvas;
+    this.quad ??= link(gl, kQuadVertex, kQuadFragment);
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    for (const [key, value] of [[gl.TEXTURE_MIN_FILTER, gl.NEAREST], [gl.TEXTURE_MAG_FILTER, gl.NEAREST],
+                                [gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE], [gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE]])
+      gl.texParameteri(gl.TEXTURE_2D, key, value);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, width, height, 0, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
+    gl.viewport(0, 0, width, height);
+    gl.useProgram(this.quad);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.deleteTexture(texture);
   }
 
   /// RGBA bytes, row 0 at the top (as the canvas shows them and the CPU renderer writes them).
@@ -57,8 +113,12 @@ export class SphereView {
   }
 }
 
-const decode = (c) => { c /= 255; return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4; };
-const luminance = (p, i) => 0.2126 * decode(p[i]) + 0.7152 * decode(p[i + 1]) + 0.0722 * decode(p[i + 2]);
+// The sRGB decoding of each 8-bit code, computed once.
+const kLinear = Float32Array.from({length: 256}, (_, code) => {
+  const c = code / 255;
+  return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
+});
+const luminance = (p, i) => 0.2126 * kLinear[p[i]] + 0.7152 * kLinear[p[i + 1]] + 0.0722 * kLinear[p[i + 2]];
 
 // A dark-blue → green → yellow ramp for t in [0, 1] (viridis-like, few stops).
 function heat(t) {

@@ -3,7 +3,7 @@ export const defaultState = () => ({
   models: [{id: 'log-normalized', params: {n: 50}}, {id: 'log', params: {n: 50}}, {id: 'schlick', params: {n: 50}}],
   theta: 55, phi: 135, reference: 'phong-normalized', size: 256,
   slice: {theta_h: 30, theta_d: 30, phi_d: 90, exposure: 0, gamma: 2.2},
-  estimator: '', samples: 4000, logPlot: false, timesCos: false, samplingSamples: 100000,
+  estimator: '', samples: 4000, logPlot: false, timesCos: false, samplingSamples: 100000, channel: 'luminance',
   lit: {model: 0, obj: 'bundled', probe: 'bundled', estimator: 'mis', samples: 256, exposure: 0},
 });
 

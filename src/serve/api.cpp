@@ -46,7 +46,7 @@ std::vector<Route> analysis_routes(const Limits& limits, Uploads& uploads) {
       {"/api/eval", eval_endpoint},   {"/api/slice", slice_endpoint}, {"/api/normalize", normalize_endpoint},
       {"/api/albedo", albedo_endpoint}, {"/api/check", check_endpoint}, {"/api/error", error_endpoint},
       {"/api/glsl", glsl_endpoint}, {"/api/sampling", sampling_endpoint},
-      {"/api/hemisphere", hemisphere_endpoint}};
+      {"/api/hemisphere", hemisphere_endpoint}, {"/api/compensation", compensation_endpoint}};
   std::vector<Route> routes{{"GET", "/api/models", [](const Request&) { return json(models_endpoint()); }}};
   for (const auto& [path, endpoint] : endpoints)
     routes.push_back({"POST", path, [endpoint, &limits](const Request& r) { return json(endpoint(r.body, limits)); }, true});

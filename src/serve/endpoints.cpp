@@ -1,6 +1,7 @@
 #include "endpoints.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "fields.h"
@@ -9,6 +10,8 @@
 
 #include "specula/catalogue/model_meta.h"
 #include "specula/glsl/glsl.h"
+#include "specula/brdf/ggx.h"
+#include "specula/queries/compensation.h"
 #include "specula/queries/queries.h"
 #include "specula/render/scene.h"
 #include "specula/render/scene_shader.h"
@@ -81,6 +84,26 @@ std::string hemisphere_endpoint(std::string_view body, const Limits& limits) {
   }
   return nlohmann::json{{"model", std::string(m.id())}, {"theta_i_deg", theta_i}, {"theta_o_deg", theta_o},
                         {"phi_o_deg", phi_o}, {"values", std::move(values)}}.dump();
+}
+
+std::string compensation_endpoint(std::string_view body, const Limits& limits) {
+  const Fields f(body, {"model", "params", "form", "coef", "mu", "paths", "seed"});
+  const Model m = queries::make(f.model(), kKey);
+  const Model& base = m.compensated() ? *m.compensated()->base : m;
+  const Ggx* ggx = base.is_lobe() || base.compensated() ? nullptr : std::get_if<Ggx>(&base.brdf());
+  if (!ggx)
+    fail("model", fmt::format("{} is not a GGX model: the compensations are measured against the random walk on GGX "
+                              "microsurfaces (ggx, ggx-schlick, ggx-f82, ggx-dielectric, ggx-conductor)", m.id()));
+  queries::VerdictSettings s;
+  s.alpha = {ggx->alpha};
+  s.mu = f.values_or("mu", "0.05,0.1,0.2,0.35,0.5,0.7,0.85,1", 32);
+  s.fresnels = {{std::string(base.id()), std::string(base.id()), ggx->fresnel}};
+  s.paths = static_cast<std::uint64_t>(f.integer_or("paths", 32768, 32768, static_cast<std::int64_t>(limits.max_walk_paths)));
+  s.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
+  io::Table cells = queries::verdict(s).cells;
+  cells.meta.emplace_back("model", std::string(m.id()));
+  cells.meta.emplace_back("compensations", fmt::format("{}", fmt::join(queries::kCompensationNames, ",")));
+  return io::to_json(cells);
 }
 
 std::string sampling_endpoint(std::string_view body, const Limits& limits) {

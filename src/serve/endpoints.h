@@ -16,6 +16,9 @@ std::string slice_endpoint(std::string_view body, const Limits& limits);
 /// f over the outgoing hemisphere at the incident θ_i: theta_o (default 0:90@46) × phi_o
 /// (default 0:355@72) in degrees, {"theta_o_deg", "phi_o_deg", "values": [[f per φ_o] per θ_o]}.
 std::string hemisphere_endpoint(std::string_view body, const Limits& limits);
+/// Each published energy compensation's albedo against the random walk's at the μ values (default
+/// 0.05 … 1) for a GGX model with its Fresnel (queries::verdict's cells for that one α and Fresnel).
+std::string compensation_endpoint(std::string_view body, const Limits& limits);
 std::string sampling_endpoint(std::string_view body, const Limits& limits);
 std::string normalize_endpoint(std::string_view body, const Limits& limits);
 std::string albedo_endpoint(std::string_view body, const Limits& limits);

@@ -144,6 +144,26 @@ TEST_F(ServeApi, HemisphereIsTheModelOverTheOutgoingDirections) {
   EXPECT_EQ(grid["theta_i_deg"], 30);
 }
 
+// The energy view's compensations: each one's albedo beside the random walk's truth on the model's
+// own microsurface and Fresnel. What specula ships follows the walk; no compensation at all misses
+// the multiply scattered light of a rough surface (the control).
+TEST_F(ServeApi, CompensationIsEachSchemesAlbedoAgainstTheWalk) {
+  const json t = ok("/api/compensation", {{"model", "ggx-f82"}, {"params", {{"alpha", 0.9}, {"f0", 0.9}, {"tint", 0.8}}},
+                                          {"mu", {0.2, 0.6, 1}}});
+  ASSERT_EQ(t["rows"].size(), 3u);
+  EXPECT_EQ(t["model"], "ggx-f82");
+  for (const auto& r : t["rows"]) {
+    EXPECT_DOUBLE_EQ(r["alpha"].get<double>(), 0.9);
+    const double truth = r["E_F"].get<double>() + r["E_ms"].get<double>();
+    EXPECT_DOUBLE_EQ(r["albedo_none"].get<double>(), r["E_F"].get<double>());
+    EXPECT_LT(std::abs(r["albedo_ggx+ms"].get<double>() - truth), 0.02) << r.dump();
+    EXPECT_GT(truth - r["albedo_none"].get<double>(), 0.05) << r.dump();
+  }
+  // ggx-f82+ms names the same microsurface and Fresnel.
+  EXPECT_EQ(ok("/api/compensation", {{"model", "ggx-f82+ms"}, {"params", {{"alpha", 0.9}, {"f0", 0.9}, {"tint", 0.8}}},
+                                     {"mu", {0.2, 0.6, 1}}})["rows"], t["rows"]);
+}
+
 // The sampling view's data: check --sampling at one angle (its histograms and verdict, as the
 // library gives them) and directions the sampler draws, each in the upper hemisphere.
 TEST_F(ServeApi, SamplingIsTheChecksVerdictWithItsHistograms) {
@@ -314,6 +334,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"a slice over its points", "/api/slice", R"({"model": "ggx", "theta_h": "0:90@101", "theta_d": "0:90@101"})", 400, "theta_d"},
         BadRequest{"a hemisphere over its points", "/api/hemisphere", R"({"model": "ggx", "theta_o": "0:90@101", "phi_o": "0:360@101"})", 400, "phi_o"},
         BadRequest{"a hemisphere below the horizon", "/api/hemisphere", R"({"model": "ggx", "theta_i": 95})", 400, "theta_i"},
+        BadRequest{"compensation of a lobe", "/api/compensation", R"({"model": "phong"})", 400, "model"},
+        BadRequest{"compensation with too few paths", "/api/compensation", R"({"model": "ggx", "paths": 100})", 400, "paths"},
+        BadRequest{"compensation at mu 0", "/api/compensation", R"({"model": "ggx", "mu": [0]})", 400, "mu"},
         BadRequest{"sampling at 90 degrees", "/api/sampling", R"({"model": "ggx", "theta": 90})", 400, "theta"},
         BadRequest{"sampling with too few samples", "/api/sampling", R"({"model": "ggx", "samples": 10})", 400, "samples"},
         BadRequest{"theta = 90", "/api/albedo", R"({"model": "lambert", "theta": [90]})", 400, "theta"},

@@ -375,6 +375,57 @@ TEST_F(Page, TheLitObjectRefinesItsImageAndTakesUploads) {
   EXPECT_EQ(state()["lit"]["obj"].get<std::string>().substr(0, 4), "obj-");
 }
 
+// BRDF Explorer's channels: a parameter given per channel ([R, G, B]) makes the sphere a composite
+// of the three channels' renders, as `render -p NAME=R,G,B` does; the plots follow the channel the
+// page picks, the luminance being the Rec. 709 sum of the channels' values. And the energy view's
+// compensations against the random walk, which this GGX model has.
+TEST_F(Page, ParametersPerChannelColourTheSphereAndThePlotsFollowTheChannel) {
+  const std::vector<double> eta{0.2, 0.9, 1.1}, kappa{3.9, 2.4, 1.9};
+  json page = kState;
+  page["models"] = {{{"id", "ggx-conductor"}, {"params", {{"alpha", 0.3}, {"eta", eta}, {"kappa", kappa}}}}};
+  open(page);
+  std::vector<std::vector<std::uint8_t>> channels;
+  for (std::size_t c = 0; c < 3; ++c)
+    channels.push_back(cpu_image(make_model("ggx-conductor", {{"alpha", 0.3}, {"eta", eta[c]}, {"kappa", kappa[c]}}), 30, 135));
+  std::vector<std::uint8_t> composite(channels[0].size());
+  for (std::size_t i = 0; i < composite.size(); ++i) composite[i] = channels[i % 3][i];
+  const Agreement a = compare(sphere_pixels(0), composite);
+  EXPECT_GE(a.within_2, 0.999) << "max difference " << a.max_difference;
+  EXPECT_GT(compare(sphere_pixels(0), channels[1]).max_difference, 20);  // control: one channel's render alone
+
+  const auto largest = [&](const std::vector<double>& weights) {
+    std::vector<double> sum;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const json grid = json::parse(specula::testing::post(server_.port(), "/api/hemisphere",
+          json{{"model", "ggx-conductor"}, {"params", {{"alpha", 0.3}, {"eta", eta[c]}, {"kappa", kappa[c]}}}, {"theta_i", 30}}.dump()).body);
+      std::size_t k = 0;
+      for (const auto& row : grid["values"])
+        for (const auto& v : row) {
+          if (sum.size() <= k) sum.push_back(0);
+          sum[k++] += weights[c] * (v.is_number() ? v.get<double>() : 0.0);
+        }
+    }
+    return *std::max_element(sum.begin(), sum.end());
+  };
+  const auto shown = [&] { return std::stod(browser_->run("return document.getElementById('lobe3d').dataset.largest;").get<std::string>()); };
+  const double luminance = largest({0.2126, 0.7152, 0.0722});
+  EXPECT_NEAR(shown(), luminance, 1e-9 * luminance);
+  const int done = renders();
+  browser_->run("const s = document.getElementById('channel'); s.value = 'r'; s.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(wait_until_rendered(done + 1));
+  const double red = largest({1, 0, 0});
+  EXPECT_NEAR(shown(), red, 1e-9 * red);
+  EXPECT_GT(std::abs(red - luminance), 1e-3 * red);  // the channels differ: the check can tell them apart
+  EXPECT_EQ(state()["channel"], "r");
+  EXPECT_EQ(browser_->run("return document.getElementById('param-0-eta-b') !== null && document.getElementById('param-rgb-0-eta').checked;"), true);
+  // The energy view's compensations against the walk, for this GGX model in the red channel's parameters.
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('plot-compensation').dataset.model === 'ggx-conductor';"));
+  const std::string caption = browser_->run("return document.getElementById('compensation-caption').textContent;").get<std::string>();
+  EXPECT_THAT(caption, HasSubstr("ggx+ms"));
+  EXPECT_THAT(caption, HasSubstr("kulla-conty"));
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-compensation polyline').length;"), 10);  // 8 schemes, the walk's band
+}
+
 // Saved sessions: the page's own models as a model file the CLI reads, the state as a settings
 // file; loading that file brings the page back as it was saved.
 TEST_F(Page, ASavedSessionIsAModelFileAndLoadsBackIdentically) {

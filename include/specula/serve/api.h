@@ -25,6 +25,7 @@ struct Limits {
   std::uint64_t max_monte_carlo_samples = 10'000'000;  ///< samples × angles
   std::size_t max_sampling_samples = 1'000'000;        ///< /api/sampling: its χ² test's samples
   std::size_t max_check_cases = 50;
+  std::int64_t max_walk_paths = 1 << 17;  ///< /api/compensation: the random walk's paths per μ
   std::size_t max_check_pairs = 100'000;
   int max_image_side = 2048;              ///< the scene shader's uniforms (glsl with shader: true)
   std::size_t max_fit_rows = 2000;
