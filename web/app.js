@@ -210,7 +210,7 @@ async function drawPlots(ticket) {
   const models = state.models.map((m, i) => ({...m, colour: palette[i], name: m.id})).filter((m) => !m.hidden);
   const lobe = await Promise.all(models.map(async (m) => isLobe(m)
     ? {...m, xs: degrees, ys: column(await capi('/api/eval', {model: ref(m), params: m.params, cos: degrees.map((d) => Math.cos((d * Math.PI) / 180))}), 'value')}
-    : {...m, xs: degrees, ys: column(await capi('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: 180}), 'value')}));
+    : {...m, xs: degrees, ys: column(await capi('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: state.phiV}), 'value')}));
   const polar = await Promise.all(models.map(async (m) => {
     const at = (phi) => capi('/api/eval', {model: ref(m), params: m.params, theta_i: state.theta, theta_o: degrees, phi_o: phi});
     const [away, toward] = await Promise.all([at(180), at(0)]);
@@ -273,7 +273,8 @@ async function drawLobe3d(ticket) {
 }
 
 async function drawSliceViews(ticket) {
-  const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i], hidden: m.hidden}))
+  const models = state.models.map((m, i) => ({request: ref(m), params: m.params, name: m.id, colour: palette[i], hidden: m.hidden,
+                                              channelParams: hasRgb(m.params) ? kChannels.map((_, c) => channelParams(m.params, c)) : null}))
     .filter((m) => !m.hidden);
   const fetched = await fetchSlices(models, state.slice, capi);
   if (ticket !== generation) return;
@@ -283,6 +284,8 @@ async function drawSliceViews(ticket) {
 
 /// The slices' sliders: the angles ask the server again; exposure and gamma redraw what it gave.
 function setupSliceControls() {
+  $('slice-chroma').checked = Boolean(state.slice.chroma);
+  $('slice-chroma').addEventListener('change', () => { state.slice.chroma = $('slice-chroma').checked; schedule(); });
   for (const key of ['theta_h', 'theta_d', 'phi_d', 'exposure', 'gamma']) {
     const id = `slice-${key.replace('_', '-')}`, input = $(id), output = $(`${id}-value`);
     input.value = state.slice[key];
@@ -334,6 +337,7 @@ function applyDefinition(definition) {
 async function update() {
   const ticket = ++generation;
   $('light-theta-value').textContent = state.theta;
+  $('plot-phi-v-value').textContent = state.phiV;
   $('light-phi-value').textContent = state.phi;
   writeState(state);
   $('status').textContent = 'computing…';
@@ -360,7 +364,7 @@ async function main() {
   if (!state.models.length) state.models = [{id: 'log-normalized', params: {n: 50}}];
   $('reference').replaceChildren(...catalogue.map((m) => new Option(m.id, m.id, false, m.id === state.reference)));
   $('reference').addEventListener('change', () => { state.reference = $('reference').value; schedule(); });
-  for (const [id, key] of [['light-theta', 'theta'], ['light-phi', 'phi']]) {
+  for (const [id, key] of [['light-theta', 'theta'], ['light-phi', 'phi'], ['plot-phi-v', 'phiV']]) {
     $(id).value = state[key];
     $(id).addEventListener('input', () => { state[key] = Number($(id).value); schedule(); });
   }

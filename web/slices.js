@@ -16,28 +16,34 @@ export function grey(v, exposure, gamma) {
   return Math.round(255 * Math.min(1, x ** (1 / gamma)));
 }
 
-/// values: θ_h-major, values[i·N + j] at column i (θ_h), row j (θ_d).
-function drawImage(canvas, values, exposure, gamma) {
+/// channels: the values of R, G and B (one array, the same for all three: grey), each θ_h-major,
+/// values[i·N + j] at column i (θ_h), row j (θ_d).
+function drawImage(canvas, channels, exposure, gamma) {
   const n = kImageSize, context = canvas.getContext('2d'), image = context.createImageData(n, n);
   for (let i = 0; i < n; ++i)
     for (let j = 0; j < n; ++j) {
-      const p = 4 * (j * n + i), g = grey(values[i * n + j], exposure, gamma);
-      image.data[p] = image.data[p + 1] = image.data[p + 2] = g;
+      const p = 4 * (j * n + i);
+      for (let c = 0; c < 3; ++c) image.data[p + c] = grey(channels[c % channels.length][i * n + j], exposure, gamma);
       image.data[p + 3] = 255;
     }
   context.putImageData(image, 0, 0);
 }
 
-/// The section's views for `models` ({request, params, name, colour}); `settings` holds theta_h,
-/// theta_d, phi_d (degrees), exposure (stops) and gamma. Returns what redraw() needs to show a new
+/// The section's views for `models` ({request, params, name, colour, channelParams}); `settings`
+/// holds theta_h, theta_d, phi_d (degrees), exposure (stops), gamma and chroma: with chroma, a model
+/// whose parameters differ per channel (channelParams: R's, G's and B's) gets a colour image, each
+/// channel from its own parameters (BRDF Explorer's chroma toggle); else the image is grey. Returns what redraw() needs to show a new
 /// exposure or gamma without asking the server again. `ask` sends a request (api, or the page's
 /// channel's).
 export async function fetchSlices(models, settings, ask = api) {
   const at = (m, theta_h, theta_d) => ask('/api/slice', {model: m.request, params: m.params, theta_h, theta_d, phi_d: settings.phi_d});
   return Promise.all(models.map(async (m) => {
-    const [alongH, alongD, image] = await Promise.all([
-      at(m, degrees, [settings.theta_d]), at(m, [settings.theta_h], degrees), at(m, pixelAngles, pixelAngles)]);
-    return {...m, h: column(alongH, 'value'), d: column(alongD, 'value'), image: column(image, 'value')};
+    const colour = settings.chroma && m.channelParams;
+    const image = (params) => api('/api/slice', {model: m.request, params, theta_h: pixelAngles, theta_d: pixelAngles, phi_d: settings.phi_d});
+    const [alongH, alongD, ...images] = await Promise.all([
+      at(m, degrees, [settings.theta_d]), at(m, [settings.theta_h], degrees),
+      ...(colour ? m.channelParams.map(image) : [at(m, pixelAngles, pixelAngles)])]);
+    return {...m, h: column(alongH, 'value'), d: column(alongD, 'value'), image: images.map((t) => column(t, 'value'))};
   }));
 }
 
@@ -63,6 +69,7 @@ export function drawSlices(slices, settings, shown = (ys) => ys) {
     const canvas = Object.assign(document.createElement('canvas'), {id: `slice-${i}`, width: kImageSize, height: kImageSize, className: 'slice'});
     canvas.setAttribute('aria-label', `θh × θd image of ${s.name}`);
     drawImage(canvas, s.image, settings.exposure, settings.gamma);
+    canvas.dataset.chroma = String(s.image.length === 3);
     figure.append(canvas, Object.assign(document.createElement('figcaption'), {textContent: s.name}));
     return figure;
   }));

@@ -255,6 +255,12 @@ TEST_F(Page, ThePlotSwitchesAndVisibilityReachEveryPlot) {
 TEST_F(Page, APressOnASphereMovesTheLightInEveryView) {
   open(kState);
   const std::string polar_before = browser_->run("return document.querySelector('#plot-polar line.incident').getAttribute('x2');").get<std::string>();
+  const auto lobe3d = [&] {
+    return browser_->run("const c = document.getElementById('lobe3d'), copy = document.createElement('canvas');"
+                         "copy.width = c.width; copy.height = c.height; const x = copy.getContext('2d'); x.drawImage(c, 0, 0);"
+                         "return Array.from(x.getImageData(0, 0, c.width, c.height).data).join(',');").get<std::string>();
+  };
+  const std::string lobe3d_before = lobe3d();
   const int done = renders();
   browser_->run(
       "const c = document.getElementById('sphere-0'), b = c.getBoundingClientRect();"
@@ -266,6 +272,7 @@ TEST_F(Page, APressOnASphereMovesTheLightInEveryView) {
   EXPECT_EQ(browser_->run("return document.getElementById('light-theta').value;"), "45");
   EXPECT_NE(browser_->run("return document.querySelector('#plot-polar line.incident').getAttribute('x2');").get<std::string>(),
             polar_before);
+  EXPECT_NE(lobe3d(), lobe3d_before);  // the 3-D lobe's incident direction and lobes moved
   expect_matches_cpu(0, make_model("log-normalized", {{"n", 50}}), 45, 45);
 }
 
@@ -424,6 +431,32 @@ TEST_F(Page, ParametersPerChannelColourTheSphereAndThePlotsFollowTheChannel) {
   EXPECT_THAT(caption, HasSubstr("ggx+ms"));
   EXPECT_THAT(caption, HasSubstr("kulla-conty"));
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-compensation polyline').length;"), 10);  // 8 schemes, the walk's band
+
+  // The θ_h × θ_d image's chroma toggle: each channel of the image from its own parameters.
+  int before = renders();
+  browser_->click("#slice-chroma");
+  ASSERT_TRUE(wait_until_rendered(before + 1));
+  EXPECT_EQ(browser_->run("return document.getElementById('slice-0').dataset.chroma;"), "true");
+  const json rgba = browser_->run("const c = document.getElementById('slice-0');"
+                                  "return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);");
+  int worst = 0, spread = 0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const auto expected = slice_image(make_model("ggx-conductor", {{"alpha", 0.3}, {"eta", eta[c]}, {"kappa", kappa[c]}}), 90, 0, 2.2);
+    for (std::size_t p = 0; p < expected.size(); ++p) {
+      worst = std::max(worst, std::abs(rgba[4 * p + c].get<int>() - expected[p]));
+      spread = std::max(spread, std::abs(rgba[4 * p].get<int>() - rgba[4 * p + 2].get<int>()));
+    }
+  }
+  EXPECT_LE(worst, 1);
+  EXPECT_GT(spread, 16);  // in colour: R and B differ
+
+  // The θ_o plot's viewer azimuth: out of the plane of incidence, another curve.
+  const double top = lobe_plot_top(*browser_);
+  before = renders();
+  browser_->run("const s = document.getElementById('plot-phi-v'); s.value = '90'; s.dispatchEvent(new Event('input'));");
+  ASSERT_TRUE(wait_until_rendered(before + 1));
+  EXPECT_EQ(state()["phiV"], 90);
+  EXPECT_NE(lobe_plot_top(*browser_), top);
 }
 
 // Saved sessions: the page's own models as a model file the CLI reads, the state as a settings
@@ -586,6 +619,13 @@ TEST_F(Page, TheEditorAddsAModelCardWithItsSphere) {
   expect_matches_cpu(2, editor_default_model(), 30, 135);
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-albedo polyline').length;"), 3);
   EXPECT_EQ(browser_->run("return document.querySelectorAll('#checks tbody tr').length;"), 3);
+  // The views added for issue 40 take the user's model as a built-in's: the 3-D lobe (its values
+  // by the same definition) and the lit object.
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#slice-images canvas').length;"), 3);
+  browser_->run("const s = document.getElementById('lit-model'); s.value = '2'; s.dispatchEvent(new Event('change'));");
+  ASSERT_TRUE(browser_->wait_for("return document.getElementById('lit-caption').textContent.startsWith('my-lobe')"
+                                 " && document.getElementById('lit-image').dataset.samples > 0;"));
+  EXPECT_EQ(state()["lit"]["model"], 2);
 }
 
 TEST_F(Page, TheEditorAppliesWhenTypingPauses) {
