@@ -12,7 +12,17 @@ const number = (x, digits = 4) => (x === null || x === undefined ? '-' : Number(
 export function setupDesign(lobeModels, addModel) {
   const $ = (id) => document.getElementById(id);
   const status = $('design-status'), body = document.querySelector('#design-front tbody');
-  $('design-target').replaceChildren(...lobeModels.map((m) => new Option(m.id, m.id, m.id === 'phong', m.id === 'phong')));
+  // Besides lobes, the engine terms (functions of c = cos θ, docs/designer.md): the server gives
+  // their own parameter and range, so the page's are not sent for them.
+  const terms = Object.assign(document.createElement('optgroup'), {label: 'engine terms (functions of c)'});
+  terms.append(...['fresnel-dielectric', 'fresnel-conductor', 'schlick-weight'].map((id) => new Option(id, id)));
+  const lobes = Object.assign(document.createElement('optgroup'), {label: 'lobes'});
+  lobes.append(...lobeModels.map((m) => new Option(m.id, m.id, m.id === 'phong', m.id === 'phong')));
+  $('design-target').replaceChildren(lobes, terms);
+  const isTerm = () => $('design-target').selectedOptions[0]?.parentElement === terms;
+  $('design-target').addEventListener('change', () => {
+    for (const id of ['design-param', 'design-lo', 'design-hi']) $(id).disabled = isTerm();
+  });
   let job = null, stopPolling = () => {};
 
   const memberRow = (l) => {
@@ -56,10 +66,10 @@ export function setupDesign(lobeModels, addModel) {
   $('design-form').addEventListener('submit', async (event) => {
     event.preventDefault();
     try {
-      const request = {target: $('design-target').value, param: $('design-param').value.trim(),
-                       range: [Number($('design-lo').value), Number($('design-hi').value)], ops: $('design-ops').value.trim(),
+      const request = {target: $('design-target').value, ops: $('design-ops').value.trim(),
                        max_cost: Number($('design-cost').value), time: Number($('design-time').value),
-                       timing: $('design-timing').checked};
+                       timing: $('design-timing').checked,
+                       ...(isTerm() ? {} : {param: $('design-param').value.trim(), range: [Number($('design-lo').value), Number($('design-hi').value)]})};
       job = (await api('/api/design', request)).job;
       $('design-start').disabled = true;
       $('design-cancel').disabled = false;

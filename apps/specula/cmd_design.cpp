@@ -1,5 +1,6 @@
 // specula design: the lobe designer (docs/designer.md).
 #include <fmt/format.h>
+#include <tuple>
 #include <functional>
 #include <iostream>
 #include <optional>
@@ -18,7 +19,7 @@ namespace {
 struct DesignOptions {
   std::string target = "phong";
   std::vector<std::string> params;
-  std::string form, range = "n=1:1000", objective = "max-abs", ops = "all", shard = "0/1", out;
+  std::string form, range, objective = "max-abs", ops = "all", shard = "0/1", out;
   design::Settings settings;
   std::optional<std::int64_t> max_forms;
   std::vector<std::string> merge;
@@ -57,7 +58,12 @@ design::Settings settings_of(const DesignOptions& o) {
   model.params = o.params;
   s.params = model.param_values();
   if (!o.form.empty()) s.form = form_named(o.form);
-  read_range(o.range, s);
+  if (o.range.empty()) {  // the target's own: n = 1:1000 for a lobe, a term's, none for an expression without parameters
+    const design::DefaultRange r = design::default_range(s.target);
+    std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
+  } else {
+    read_range(o.range, s);
+  }
   s.objective = choice_named<design::Objective, design::kObjectiveCount>("objective", o.objective, Spelling::option);
   s.operations = design::parse_operations(o.ops);
   s.max_forms = o.max_forms;
@@ -115,11 +121,16 @@ void run(const DesignOptions& o) {
 void add_design_command(CLI::App& app) {
   auto o = std::make_shared<DesignOptions>();
   auto* cmd = app.add_subcommand("design", "Search cheap lobes against a target lobe; write their Pareto front");
-  cmd->add_option("--target", o->target, "The lobe to approximate: an id, 'lobe: FORMULA' or a model file's id")
+  cmd->add_option("--target", o->target,
+                  "What to approximate: a lobe (an id, 'lobe: FORMULA' or a model file's id), a function of\n"
+                  "c = cos θ in (0, 1] ('expr: FORMULA', e.g. 'expr: (1 - c)^5'), or an engine term:\n"
+                  "fresnel-dielectric (eta), fresnel-conductor (eta; -p kappa=…), schlick-weight")
       ->capture_default_str();
   cmd->add_option("--param,-p", o->params, "The target's other parameters, NAME=VALUE (repeatable)");
   cmd->add_option("--form", o->form, "The target's form, rv or nh (default: its own)")->check(CLI::IsMember({"rv", "nh"}));
-  cmd->add_option("--range", o->range, "The parameter the lobes follow and its range, NAME=LO:HI")->capture_default_str();
+  cmd->add_option("--range", o->range, "The parameter the lobes follow and its range, NAME=LO:HI (default: the target's:\n"
+                  "n=1:1000 for a lobe, eta=1.2:2.5 for fresnel-dielectric, eta=0.1:3 for fresnel-conductor,\n"
+                  "none for a target without parameters)");
   cmd->add_option("--objective", o->objective, "max-abs: the largest |F − target|; max-rel: the largest relative error "
                   "where the target ≥ --zone; both: the two as objectives")
       ->capture_default_str()->check(one_of<design::Objective, design::kObjectiveCount>());
@@ -153,6 +164,8 @@ void add_design_command(CLI::App& app) {
       "  specula design --target phong --range n=1:1000 --out designed\n"
       "  specula --models designed/models.toml error --model phong-d1 --reference phong --n 1:1000@20:log\n"
       "  specula design --target phong --range n=1:1000 --ops fma,mul,max --max-cost 8 --out cheap\n"
+      "  specula design --target fresnel-dielectric --out fresnel     # beside Schlick's and Unreal's\n"
+      "  specula design --target 'expr: (1 - c)^5' --ops fma,mul,add,max,exp --out weight\n"
       "Shards of one search on several machines, then one front (GNU parallel; a Slurm array runs\n"
       "the same command with I = $SLURM_ARRAY_TASK_ID):\n"
       "  parallel specula design --shard {}/4 --out shard{} ::: 0 1 2 3\n"

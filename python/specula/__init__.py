@@ -244,12 +244,14 @@ class DesignResult:
         return f"DesignResult({len(self.front)} lobes on the front, {len(self.references)} references)"
 
 
-def design(target="phong", *, params=None, form=None, param="n", range=(1, 1000), objective="max-abs", zone=0.5,
+def design(target="phong", *, params=None, form=None, param=None, range=None, objective="max-abs", zone=0.5,
            ops="all", max_cost=6, max_forms=None, time=540.0, seed=1, threads=0, measure_cost=True):
     """The lobe designer (specula design, docs/designer.md): searches cheap lobe shapes against the
-    target lobe over `range` of its parameter `param`, fits them for `objective` ('max-abs',
+    target over `range` of its parameter `param` (both None: the target's own, n = (1, 1000) for a
+    lobe), fits them for `objective` ('max-abs',
     'max-rel' or 'both'), normalizes, checks and times them, and returns the Pareto front as a
-    DesignResult. ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
+    DesignResult. The target is a lobe, a function of c ("expr: (1 - c)^5") or an engine term
+    ("fresnel-dielectric", "fresnel-conductor", "schlick-weight"). ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
     model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget).
 
     >>> r = specula.design("phong", range=(1, 100), ops="mul", max_cost=1, measure_cost=False, time=60)

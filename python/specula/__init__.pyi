@@ -123,6 +123,6 @@ def fit(X: npt.ArrayLike | dict[str, npt.ArrayLike], y: npt.ArrayLike, *, variab
         choose: Literal["parsimonious", "knee", "best"] = ..., choose_factor: float = ..., snap: bool = ...,
         starts: Sequence[str] = ...) -> FitResult: ...
 def design(target: str = ..., *, params: dict[str, float] | None = ..., form: Literal["rv", "nh"] | None = ...,
-           param: str = ..., range: tuple[float, float] = ..., objective: Literal["max-abs", "max-rel", "both"] = ...,
+           param: str | None = ..., range: tuple[float, float] | None = ..., objective: Literal["max-abs", "max-rel", "both"] = ...,
            zone: float = ..., ops: str = ..., max_cost: int = ..., max_forms: int | None = ..., time: float = ...,
            seed: int = ..., threads: int = ..., measure_cost: bool = ...) -> DesignResult: ...

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <tuple>
 #include <cmath>
 
 #include "binding.h"
@@ -148,11 +149,16 @@ py::dict design_run(const py::dict& kwargs) {
   s.target = argument<std::string>(kwargs["target"], "target");
   for (const auto& [key, value] : kwargs["params"].cast<py::dict>()) s.params[py::str(key)] = argument<double>(value, "params");
   if (!kwargs["form"].is_none()) s.form = queries::form_named(argument<std::string>(kwargs["form"], "form"), Spelling::key);
-  s.param = argument<std::string>(kwargs["param"], "param");
-  const auto range = values_of(kwargs["range"], "range");
-  if (range.size() != 2) throw InvalidField("range", "range must be (lo, hi), two numbers");
-  s.lo = range[0];
-  s.hi = range[1];
+  if (kwargs["param"].is_none() && kwargs["range"].is_none()) {  // the target's own range
+    const design::DefaultRange r = design::default_range(s.target);
+    std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
+  } else {
+    s.param = kwargs["param"].is_none() ? std::string("n") : argument<std::string>(kwargs["param"], "param");
+    const auto range = values_of(kwargs["range"], "range");
+    if (range.size() != 2) throw InvalidField("range", "range must be (lo, hi), two numbers");
+    s.lo = range[0];
+    s.hi = range[1];
+  }
   s.objective = choice_named<design::Objective, design::kObjectiveCount>("objective", argument<std::string>(kwargs["objective"], "objective"),
                                                                          Spelling::key);
   s.zone = argument<double>(kwargs["zone"], "zone");

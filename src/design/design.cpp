@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <regex>
 #include <map>
 #include <mutex>
 #include <tbb/parallel_for.h>
@@ -144,10 +145,33 @@ std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> f
   return l;
 }
 
+// `formula` with each of `params` (the target's fixed parameters, κ) written as its value.
+std::string with_values(std::string_view formula, const ParamValues& params) {
+  std::string out(formula);
+  for (const auto& [name, value] : params)
+    out = std::regex_replace(out, std::regex("\\b" + name + "\\b"), fmt::format("({})", value));
+  return out;
+}
+
 // The built-in bare lobes with the range parameter (one per family), and the spherical Gaussian
 // e^(n(c − 1)) where the parameter is n.
 std::vector<Lobe> reference_lobes(const Settings& s) {
   std::vector<Lobe> out;
+  if (is_function_target(s.target)) {  // a term's: the engines' approximations and the term itself
+    ParamValues fixed = s.params;  // the target's other parameters, given or at their defaults
+    const auto info = model_definition("lobe: " + function_formula(s.target));
+    for (const ParamInfo& p : info->params)
+      if (p.name != s.param) fixed.emplace(p.name, p.default_value);
+    for (const TermReference& r : term_references()) {
+      if (r.term != s.target) continue;
+      Lobe l;
+      l.id = r.id;
+      l.reference = l.evaluable = true;
+      l.formula = with_values(r.formula, fixed);
+      out.push_back(std::move(l));
+    }
+    return out;
+  }
   for (const ModelInfo& info : models()) {
     if (!info.is_builtin() || info.kind != ModelKind::lobe || info.normalization != Normalization::none) continue;
     const ParamInfo* p = info.find_param(s.param);
@@ -162,6 +186,7 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
     Lobe l;
     l.id = "spherical-gaussian";
     l.reference = true;
+    l.evaluable = true;
     l.formula = "exp(n * (c - 1))";
     out.push_back(std::move(l));
   }
@@ -176,7 +201,7 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   std::vector<Lobe*> native_lobes, builtin_lobes;
   for (Lobe* l : lobes) {
     if (is_formula(*l)) {
-      natives.push_back({expr::parse(l->formula, {"c", s.param}), p});
+      natives.push_back({expr::parse(l->formula, formula_variables(s)), p});
       native_lobes.push_back(l);
     } else {
       builtin_lobes.push_back(l);
@@ -196,8 +221,8 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
       timed.emplace_back(native_lobes[i], "native Highway kernel, float");
     }
     note = fmt::format("native kernels compiled by {} -O2 -march=native; built-ins by specula bench's kernels; "
-                       "ns per value in cache, one core, float, at {} = {:g}",
-                       native_compiler(), s.param, p);
+                       "ns per value in cache, one core, float{}",
+                       native_compiler(), s.param.empty() ? std::string() : fmt::format(", at {} = {:g}", s.param, p));
   } catch (const Interrupted&) {
     throw;
   } catch (const std::runtime_error& e) {
@@ -273,13 +298,15 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
   }
   const bool timed = std::ranges::all_of(members, [](const Lobe& m) { return std::isfinite(m.ns_per_eval); });
   members = pareto(std::move(members), s.objective, timed);
-  const std::string prefix = s.target.find(':') == std::string::npos ? s.target : std::string("lobe");
+  const std::string prefix = s.target.find(':') == std::string::npos ? s.target
+                             : std::string(is_function_target(s.target) ? "expr" : "lobe");
   for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
   result.front = std::move(members);
   if (!result.cancelled) {
     tell("checking", 0, static_cast<std::int64_t>(result.front.size()), nullptr);
     try {
-      for (auto& m : result.front) normalize_and_check(m, s, stop);
+      // A function of c is not a lobe: no k, no energy to check.
+      for (auto& m : result.front) is_function_target(s.target) ? void(m.check = "-") : normalize_and_check(m, s, stop);
       result.spirv_note = count_spirv(result, stop);
     } catch (const Interrupted&) {
       result.cancelled = true;
@@ -299,9 +326,10 @@ void validate_target_values(const Settings& s) {
       const double v = lobes::at_log_cos(target, u);
       if (std::isfinite(v) && v >= 0 && v <= Ranges::target_max) continue;
       const std::string what = !std::isfinite(v) ? "not finite" : v < 0 ? "negative" : "too large";
-      throw InvalidField("target", fmt::format("the target '{}' is {} at c = {:.6g}, {} = {:.6g} ({:g}): a target must be "
+      const std::string at_param = s.param.empty() ? std::string() : fmt::format(", {} = {:.6g}", s.param, p);
+      throw InvalidField("target", fmt::format("the target '{}' is {} at c = {:.6g}{} ({:g}): a target must be "
                                                "finite, ≥ 0 and at most {:g} for every c in (0, 1] over the range",
-                                               s.target, what, std::exp(-u), s.param, p, v, Ranges::target_max));
+                                               s.target, what, std::exp(-u), at_param, v, Ranges::target_max));
     }
   }
 }
@@ -429,19 +457,35 @@ std::vector<Operation> parse_operations(std::string_view text) {
   return out;
 }
 
-void validate(const Settings& s) {
-  std::shared_ptr<const ModelInfo> info;
-  try {
-    info = model_definition(s.target, s.params);
-  } catch (const InvalidField& e) {  // the catalogue names its argument "model": here it is the target
-    throw InvalidField(e.field() == "model" ? "target" : e.field(), e.what());
+namespace {
+
+// The range parameter is the target's (or, for a target without parameters, none: lo = hi).
+void validate_range(const Settings& s, const ModelInfo& info) {
+  if (s.param.empty()) {
+    if (!info.params.empty())
+      throw InvalidField("range", fmt::format("the target '{}' has parameters: give the range of one with --range", s.target));
+    if (s.lo != s.hi) throw InvalidField("range", "a target without parameters has no range: lo = hi");
+    return;
   }
-  if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
-  const ParamInfo* p = info->find_param(s.param);
+  const ParamInfo* p = info.find_param(s.param);
   if (!p) throw InvalidField("range", fmt::format("the target '{}' has no parameter '{}'", s.target, s.param));
   if (!(s.lo < s.hi)) throw InvalidField("range", fmt::format("the range of {} is empty: {:g} to {:g}", s.param, s.lo, s.hi));
   if (!p->accepts(s.lo) || !p->accepts(s.hi))
     throw InvalidField("range", fmt::format("the range {:g}:{:g} is outside {}'s range {}", s.lo, s.hi, s.param, p->range_text()));
+}
+
+}  // namespace
+
+void validate(const Settings& s) {
+  std::shared_ptr<const ModelInfo> info;
+  try {
+    const std::string model = is_function_target(s.target) ? "lobe: " + function_formula(s.target) : s.target;
+    info = model_definition(model, s.params);
+  } catch (const InvalidField& e) {  // the catalogue names its argument "model": here it is the target
+    throw InvalidField(e.field() == "model" ? "target" : e.field(), e.what());
+  }
+  if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
+  validate_range(s, *info);
   if (s.lo > 0 && s.hi / s.lo > Ranges::range_ratio)
     throw InvalidField("range", fmt::format("the range spans over {:g} times", Ranges::range_ratio));
   if (s.operations.empty()) throw InvalidField("ops", "no operations to build lobes with");

@@ -118,7 +118,40 @@ std::vector<double> param_grid(double lo, double hi, std::size_t count) {
   return out;
 }
 
+namespace {
+
+// A function of c over (0, 1]: rows even in c, and as many again in c², denser toward grazing
+// (c → 0), where Fresnel's terms change fastest. max_rel keeps the rows at ≥ zone × the largest.
+Samples function_samples_at(const Settings& s, double p) {
+  Samples out{p, target_at(s, p).lobe(), {}, {}};
+  constexpr std::size_t kRows = 64;
+  for (std::size_t i = 1; i <= kRows; ++i) {
+    const double t = static_cast<double>(i) / kRows;
+    for (const double c : {t, t * t / 4}) {
+      const double value = lobes::eval(out.target, c);
+      if (!std::isfinite(value)) continue;
+      out.c.push_back(c);
+      out.value.push_back(value);
+    }
+  }
+  if (s.objective == Objective::max_rel) {
+    const double top = *std::ranges::max_element(out.value);
+    Samples kept{p, out.target, {}, {}};
+    for (std::size_t r = 0; r < out.c.size(); ++r)
+      if (out.value[r] >= s.zone * top && out.value[r] > 0) {
+        kept.c.push_back(out.c[r]);
+        kept.value.push_back(out.value[r]);
+      }
+    out = std::move(kept);
+  }
+  if (out.c.empty()) throw InvalidField("target", fmt::format("the target has no usable row at {} = {:g}", s.param, p));
+  return out;
+}
+
+}  // namespace
+
 Samples samples_at(const Settings& s, double p) {
+  if (is_function_target(s.target)) return function_samples_at(s, p);
   Samples out{p, target_at(s, p).lobe(), {}, {}};
   const double width = half_max_u(out.target);
   const auto add = [&](double u) {

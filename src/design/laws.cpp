@@ -69,6 +69,8 @@ expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expre
 
 std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples> grid, const GridFit& fitted,
                                     const Settings& s, const std::function<bool()>& stop) {
+  if (s.param.empty())  // no parameter: the constants are numbers
+    return Lawful{with_constants(shape, fitted.constants.at(0)), fitted.worst};
   std::vector<double> params;
   for (const auto& g : grid) params.push_back(g.param);
   std::vector<std::vector<double>> constants = fitted.constants;

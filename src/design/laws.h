@@ -17,7 +17,7 @@ struct Lawful {
 };
 
 /// Laws for every constant of `shape` fitted over `grid` (its GridFit `fitted`); nullopt if the
-/// search was stopped (`stop`).
+/// search was stopped (`stop`). Without a range parameter, the one grid value's constants.
 std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples> grid, const GridFit& fitted,
                                     const Settings& s, const std::function<bool()>& stop);
 

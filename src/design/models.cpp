@@ -25,19 +25,27 @@ double timing_param(const Settings& s) {
 
 Model target_at(const Settings& s, double p) {
   ParamValues params = s.params;
-  params[s.param] = p;
-  Model m = make_model(s.target, params, s.form);
+  if (!s.param.empty()) params[s.param] = p;
+  // A function of c is evaluated as the lobe model of its formula (F at c ∈ (0, 1]).
+  const std::string model = is_function_target(s.target) ? "lobe: " + function_formula(s.target) : s.target;
+  Model m = make_model(model, params, s.form);
   if (!m.is_lobe()) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
   return m;
 }
 
 Form target_form(const Settings& s) { return s.form ? *s.form : target_at(s, s.lo).form(); }
 
-bool is_formula(const Lobe& l) { return !l.reference || l.id == "spherical-gaussian"; }
+std::vector<std::string> formula_variables(const Settings& s) {
+  if (s.param.empty()) return {"c"};
+  return {"c", s.param};
+}
+
+bool is_formula(const Lobe& l) { return !l.reference || l.evaluable; }
 
 std::function<Model(double)> lobe_at(const Lobe& l, const Settings& s) {
-  const auto info = model_definition(is_formula(l) ? "lobe: " + l.formula : l.id, {{s.param, s.lo}});
-  const bool reads_param = info->find_param(s.param) != nullptr;  // F = c does not
+  const ParamValues at_lo = s.param.empty() ? ParamValues{} : ParamValues{{s.param, s.lo}};
+  const auto info = model_definition(is_formula(l) ? "lobe: " + l.formula : l.id, at_lo);
+  const bool reads_param = !s.param.empty() && info->find_param(s.param) != nullptr;  // F = c does not
   return [info, reads_param, param = s.param, form = target_form(s)](double p) {
     ParamValues params;
     if (reads_param) params[param] = p;

@@ -215,7 +215,7 @@ class DesignReader {
       fail(fmt::format("{}'model_cost'", prefix), fmt::format("must be an integer in [0, max_cost = {}]", s.max_cost));
     l.model_cost = cost.get<int>();
     parsed(fmt::format("{}'formula':", prefix), [&] {
-      (void)expr::parse(l.formula, {"c", s.param});  // a formula in c and the parameter
+      (void)expr::parse(l.formula, formula_variables(s));  // a formula in c and the parameter
       (void)lobe_at(l, s);                            // … that is a lobe model
     });
     return l;
@@ -234,11 +234,16 @@ std::string front_csv(const Result& result) {
   return out;
 }
 
+// "n in [1, 1000]", or "c in (0, 1]" for a target without parameters.
+std::string domain_text(const Settings& s) {
+  return s.param.empty() ? std::string("c in (0, 1]") : fmt::format("{} in [{:g}, {:g}]", s.param, s.lo, s.hi);
+}
+
 MemberModel member_model(const Result& result, const Lobe& l, bool normalized) {
   const Settings& s = result.settings;
   return {normalized ? l.id + "-normalized" : l.id,
           fmt::format("designed lobe {}{}", l.id, normalized ? ", normalized" : ""),
-          fmt::format("max |F − {}| = {:.4g} over {} in [{:g}, {:g}]", s.target, l.max_abs, s.param, s.lo, s.hi),
+          fmt::format("max |F − {}| = {:.4g} over {}", s.target, l.max_abs, domain_text(s)),
           target_form(s),
           l.formula,
           normalized ? normalization_of(l) : "none",
@@ -250,17 +255,21 @@ MemberModel member_model(const Result& result, const Lobe& l, bool normalized) {
 
 std::string models_toml(const Result& result) {
   const Settings& s = result.settings;
-  std::string out = fmt::format("# Lobes designed by specula design against {} over {} in [{:g}, {:g}] ({}).\n",
-                                s.target, s.param, s.lo, s.hi, to_string(s.objective));
+  std::string out = fmt::format("# Lobes designed by specula design against {} over {} ({}).\n", s.target,
+                                domain_text(s), to_string(s.objective));
   if (result.front.empty()) return out + "\nmodel = []  # the front is empty: no lobe was finished\n";
+  // A function of c (not a lobe) is written bare only: a normalized twin would mean nothing.
+  const std::vector<bool> twins = is_function_target(s.target) ? std::vector<bool>{false} : std::vector<bool>{false, true};
   for (const auto& l : result.front) {
-    for (bool normalized : {false, true}) {
+    for (bool normalized : twins) {
       const MemberModel m = member_model(result, l, normalized);
       out += fmt::format(
           "\n[[model]]\nid = {}\nname = {}\nsource = \"specula design\"\nsummary = {}\nkind = \"lobe\"\nform = \"{}\"\n"
-          "lobe = {}\nnormalization = {}\n[model.params.{}]\ndefault = {:.17g}\nmin = {:.17g}\nmax = {:.17g}\n",
+          "lobe = {}\nnormalization = {}\n",
           toml_string(m.id), toml_string(m.name), toml_string(m.summary), to_string(m.form), toml_string(m.lobe),
-          toml_string(m.normalization), m.param, m.default_value, m.min, m.max);
+          toml_string(m.normalization));
+      if (!m.param.empty())
+        out += fmt::format("[model.params.{}]\ndefault = {:.17g}\nmin = {:.17g}\nmax = {:.17g}\n", m.param, m.default_value, m.min, m.max);
     }
   }
   return out;
@@ -276,13 +285,13 @@ std::string front_table(const Result& result) {
                        std::isfinite(l.ns_per_eval / log) ? fmt::format("{:.2f}", l.ns_per_eval / log) : "-",
                        l.ops > 0 ? std::to_string(l.ops) : "-",
                        std::isfinite(l.spirv_instructions) ? fmt::format("{:g}", l.spirv_instructions) : "-",
-                       l.reference || l.check.empty() ? "-" : l.check == "pass" ? "pass" : "FAIL", shown(l));
+                       l.reference || l.check.empty() || l.check == "-" ? "-" : l.check == "pass" ? "pass" : "FAIL", shown(l));
   };
   for (const auto& l : result.front) line(l);
   out += "references:\n";
   for (const auto& l : result.references) line(l);
   for (const auto& l : result.front)
-    if (!l.check.empty() && l.check != "pass") out += fmt::format("{}: check {}\n", l.id, l.check);
+    if (!l.check.empty() && l.check != "pass" && l.check != "-") out += fmt::format("{}: check {}\n", l.id, l.check);
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <tuple>
 
 #include "fields.h"
 #include "specula/design/design.h"
@@ -28,7 +29,8 @@ Json definition(const design::MemberModel& m) {
               {"lobe", m.lobe},
               {"form", to_string(m.form)},
               {"normalization", m.normalization},
-              {"params", Json{{m.param, Json{{"default", m.default_value}, {"min", m.min}, {"max", m.max}}}}}};
+              {"params", m.param.empty() ? Json::object()
+                                         : Json{{m.param, Json{{"default", m.default_value}, {"min", m.min}, {"max", m.max}}}}}};
 }
 
 struct DesignJob final : Job {
@@ -110,6 +112,11 @@ struct DesignJob final : Job {
 [[noreturn]] void fail(std::string_view field, const std::string& message) { throw InvalidField(std::string(field), message); }
 
 void read_range(const Fields& f, design::Settings& s) {
+  if (!f.has("param") && !f.has("range")) {  // the target's own range
+    const design::DefaultRange r = design::default_range(s.target);
+    std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
+    return;
+  }
   s.param = f.text_or("param", "n");
   if (!f.has("range")) return;
   const nlohmann::json& range = f.raw("range");

@@ -97,6 +97,8 @@ std::string compensation_endpoint(std::string_view body, const Limits& limits) {
   queries::VerdictSettings s;
   s.alpha = {ggx->alpha};
   s.mu = f.values_or("mu", "0.05,0.1,0.2,0.35,0.5,0.7,0.85,1", 32);
+  for (const double mu : s.mu)
+    if (!(mu > 0 && mu <= 1)) fail("mu", fmt::format("mu {} is outside (0, 1]", mu));
   s.fresnels = {{std::string(base.id()), std::string(base.id()), ggx->fresnel}};
   s.paths = static_cast<std::uint64_t>(f.integer_or("paths", 32768, 32768, static_cast<std::int64_t>(limits.max_walk_paths)));
   s.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));

@@ -271,6 +271,17 @@ def test_design_is_the_clis(specula, tmp_path):
         specula.design("ggx")
 
 
+def test_design_takes_an_engine_term_with_its_own_range(specula):
+    # schlick-weight has no parameter: no range is given, and the engines' exp2 form is a reference row.
+    r = specula.design("schlick-weight", ops="fma,mul", max_cost=2, measure_cost=False, threads=1, time=30)
+    ids = [l["id"] for l in r.references]
+    assert ids == ["unreal-exp2", "exact"]
+    assert abs(r.references[0]["max_abs"] - 0.00377) < 5e-5
+    assert all(l["check"] == "-" for l in r.front)
+    with pytest.raises(ValueError, match="range"):
+        specula.design("expr: c^eta")  # a parameter without a range of its own
+
+
 def test_complex_and_text_arrays_are_type_errors_not_silent_casts(specula):
     m = specula.model("ggx", alpha=0.3)
     for bad in [np.array([0.5 + 1j]), np.array(["0.5"]), [object()]]:

@@ -76,6 +76,25 @@ TEST(ServeDesign, AJobShipsMembersThatLoadAsModels) {
   EXPECT_GT(passed, 0) << status["front"].dump(2);
 }
 
+// An engine term as the target (issue 41): no range sent, the term's own is used; its references
+// are the engines' approximations and the term itself; a member's definition loads as a model.
+TEST(ServeDesign, AnEngineTermIsATargetWithItsEnginesReferences) {
+  TestServer server;
+  const std::int64_t id = start_design(server.port(), {{"target", "schlick-weight"}, {"ops", "fma,mul"}, {"max_cost", 2},
+                                                       {"time", 30}, {"timing", false}});
+  const json status = finished(server.port(), id);
+  ASSERT_EQ(status["state"], "done") << status.dump(2);
+  std::set<std::string> references;
+  for (const auto& r : status["references"]) references.insert(r["id"].get<std::string>());
+  EXPECT_EQ(references, (std::set<std::string>{"unreal-exp2", "exact"}));
+  ASSERT_FALSE(status["front"].empty());
+  const json member = status["front"].back();
+  EXPECT_EQ(member["check"], "-");
+  const Answer eval = post_json(server.port(), "/api/eval", {{"model", member["definition"]}, {"cos", {0.5}}});
+  ASSERT_EQ(eval.status, 200) << eval.body;
+  EXPECT_NEAR(eval.json()["rows"][0]["value"].get<double>(), std::pow(0.5, 5), member["max_abs_error"].get<double>() + 1e-12);
+}
+
 TEST(ServeDesign, BadSettingsAreRefusedNamingTheField) {
   TestServer server;
   const auto refused = [&](const json& request, const std::string& field) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -75,11 +76,52 @@ struct Ranges {
   static constexpr std::size_t design_json_bytes = std::size_t{1} << 20;  ///< a design.json --merge reads: 1 MiB
 };
 
+/// A term of a microfacet BRDF that engines approximate by hand, as a target of the designer
+/// besides lobes (docs/designer.md, "Targets beyond lobes"): a function of c = cos θ ∈ (0, 1],
+/// exact as written, with its usual range parameter and the engines' approximations of it.
+struct Term {
+  std::string_view id;       ///< the target's name: "fresnel-dielectric"
+  std::string_view formula;  ///< the exact term in c and the parameters (specula's expressions)
+  std::string_view param;    ///< the range parameter ("" for none)
+  double lo = 0, hi = 0;     ///< its default range
+  std::string_view summary;
+};
+
+/// An engine's approximation of a term: a reference row of the front, timed and measured as the
+/// members are.
+struct TermReference {
+  std::string_view term;     ///< the Term's id
+  std::string_view id;       ///< "schlick", "unreal-exp2"
+  std::string_view formula;  ///< in c and the term's parameters
+  std::string_view source;   ///< who uses it, and where it was published
+};
+
+/// The built-in terms, and every engine approximation of them the designer measures.
+std::span<const Term> terms();
+std::span<const TermReference> term_references();
+
+/// Whether `target` is a function of c rather than a lobe: "expr: FORMULA" or a Term's id. A
+/// function target is measured on all of c ∈ (0, 1] (not in u around a peak), its members are not
+/// normalized or energy-checked (they are not lobes), and its references are its engines'.
+bool is_function_target(std::string_view target);
+/// The formula of a function target: the text after "expr:", or the Term's formula.
+std::string function_formula(std::string_view target);
+
+/// The range a target is searched over when none is given: the Term's, n = 1:1000 for a lobe or
+/// an expression with n, none ("" and 1:1) for an expression without parameters.
+struct DefaultRange {
+  std::string param;
+  double lo = 1, hi = 1;
+};
+DefaultRange default_range(std::string_view target);
+
 struct Settings {
-  std::string target = "phong";  ///< a lobe model: id, "lobe: …" or a model-file id
+  /// A lobe model (id, "lobe: …" or a model-file id), or a function of c: "expr: FORMULA" or a
+  /// Term's id (is_function_target).
+  std::string target = "phong";
   ParamValues params;            ///< the target's other parameters
   std::optional<Form> form;      ///< the target's form (default: its own)
-  std::string param = "n";       ///< the range parameter
+  std::string param = "n";       ///< the range parameter; "" where the target has none (then lo = hi)
   double lo = 1, hi = 1000;      ///< its range
   Objective objective = Objective::max_abs;
   double zone = 0.5;             ///< the epicenter of max_rel: target ≥ zone
@@ -98,6 +140,7 @@ struct Settings {
 struct Lobe {
   std::string id;
   bool reference = false;
+  bool evaluable = false;       ///< references: `formula` is code (compiled and timed), not a description
   std::string formula;          ///< F in c and the parameter
   std::string shape;            ///< the structure searched, constants as k ("" for references)
   double max_abs = 0;           ///< over the whole domain
@@ -173,8 +216,10 @@ double timing_param(const Settings& s);
 Model target_at(const Settings& s, double p);
 /// The target's form: the settings', else the target model's own.
 Form target_form(const Settings& s);
-/// Whether l is a formula (every member, and the spherical-Gaussian reference) rather than a
-/// built-in model's id.
+/// The variables of a lobe's formula: c, then the range parameter (if any).
+std::vector<std::string> formula_variables(const Settings& s);
+/// Whether l is a formula (every member, and the evaluable references: the spherical Gaussian,
+/// the engines' approximations of a term) rather than a built-in model's id.
 bool is_formula(const Lobe& l);
 /// Lobe l (a member or a reference) as a model at each value of the range parameter, in the
 /// target's form, bare (normalization none). The model definition is read once.
