@@ -19,7 +19,7 @@ namespace {
 struct DesignOptions {
   std::string target = "phong";
   std::vector<std::string> params;
-  std::string form, range, objective = "max-abs", ops = "all", shard = "0/1", out;
+  std::string form, range, vars, objective = "max-abs", ops = "all", shard = "0/1", out;
   design::Settings settings;
   std::optional<std::int64_t> max_forms;
   std::vector<std::string> merge;
@@ -41,6 +41,17 @@ void read_range(const std::string& text, design::Settings& s) {
   s.hi = number(std::string_view(text).substr(colon + 1));
 }
 
+// "NoV,NoL".
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> out;
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    out.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
 // "I/N".
 void read_shard(const std::string& text, design::Settings& s) {
   const auto slash = text.find('/');
@@ -58,8 +69,9 @@ design::Settings settings_of(const DesignOptions& o) {
   model.params = o.params;
   s.params = model.param_values();
   if (!o.form.empty()) s.form = form_named(o.form);
+  s.variables = o.vars.empty() ? design::default_variables(s.target) : split_names(o.vars);
   if (o.range.empty()) {  // the target's own: n = 1:1000 for a lobe, a term's, none for an expression without parameters
-    const design::DefaultRange r = design::default_range(s.target);
+    const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
   } else {
     read_range(o.range, s);
@@ -124,12 +136,16 @@ void add_design_command(CLI::App& app) {
   cmd->add_option("--target", o->target,
                   "What to approximate: a lobe (an id, 'lobe: FORMULA' or a model file's id), a function of\n"
                   "c = cos θ in (0, 1] ('expr: FORMULA', e.g. 'expr: (1 - c)^5'), or an engine term:\n"
-                  "fresnel-dielectric (eta), fresnel-conductor (eta; -p kappa=…), schlick-weight")
+                  "fresnel-dielectric (eta), fresnel-conductor (eta; -p kappa=…), schlick-weight,\n"
+                  "smith-g2-ggx (NoV, NoL; alpha)")
       ->capture_default_str();
   cmd->add_option("--param,-p", o->params, "The target's other parameters, NAME=VALUE (repeatable)");
   cmd->add_option("--form", o->form, "The target's form, rv or nh (default: its own)")->check(CLI::IsMember({"rv", "nh"}));
+  cmd->add_option("--vars", o->vars, "A function target's per-pixel variables, each over (0, 1], e.g. NoV,NoL (default: c,\n"
+                  "or the term's); every other name in its formula is a parameter");
   cmd->add_option("--range", o->range, "The parameter the lobes follow and its range, NAME=LO:HI (default: the target's:\n"
                   "n=1:1000 for a lobe, eta=1.2:2.5 for fresnel-dielectric, eta=0.1:3 for fresnel-conductor,\n"
+                  "alpha=0.05:1 for smith-g2-ggx,\n"
                   "none for a target without parameters)");
   cmd->add_option("--objective", o->objective, "max-abs: the largest |F − target|; max-rel: the largest relative error "
                   "where the target ≥ --zone; both: the two as objectives")
@@ -166,6 +182,7 @@ void add_design_command(CLI::App& app) {
       "  specula design --target phong --range n=1:1000 --ops fma,mul,max --max-cost 8 --out cheap\n"
       "  specula design --target fresnel-dielectric --out fresnel     # beside Schlick's and Unreal's\n"
       "  specula design --target 'expr: (1 - c)^5' --ops fma,mul,add,max,exp --out weight\n"
+      "  specula design --target smith-g2-ggx --max-cost 5 --out smith           # G2(NoV, NoL; alpha)\n"
       "Shards of one search on several machines, then one front (GNU parallel; a Slurm array runs\n"
       "the same command with I = $SLURM_ARRAY_TASK_ID):\n"
       "  parallel specula design --shard {}/4 --out shard{} ::: 0 1 2 3\n"

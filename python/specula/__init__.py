@@ -225,13 +225,16 @@ class DesignResult:
     """A lobe designer's run (specula design, docs/designer.md): the Pareto front of cost against
     error (front, cheapest first: dicts with id, formula, shape, max_abs, argmax_c, argmax_param,
     max_rel, ops, model_cost, ns_per_eval, timing, spirv_instructions, k, k_formula, check), the
-    target's usual approximations measured beside them (references), and the files specula design
+    target's usual approximations measured beside them (references), the members kept off the
+    front because their normalized twin fails specula check (refused, its check saying why), and
+    the files specula design
     writes, as text: toml (models.toml: every member bare and normalized, for load_models), csv
     (front.csv), json (design.json) and table."""
 
     def __init__(self, fields):
         self.front = fields["front"]
         self.references = fields["references"]
+        self.refused = fields["refused"]
         self.toml, self.csv, self.json, self.table = fields["toml"], fields["csv"], fields["json"], fields["table"]
         self.forms_screened, self.forms_total = fields["forms_screened"], fields["forms_total"]
         self.seconds, self.cancelled, self.cost_note = fields["seconds"], fields["cancelled"], fields["cost_note"]
@@ -244,21 +247,22 @@ class DesignResult:
         return f"DesignResult({len(self.front)} lobes on the front, {len(self.references)} references)"
 
 
-def design(target="phong", *, params=None, form=None, param=None, range=None, objective="max-abs", zone=0.5,
+def design(target="phong", *, vars=None, params=None, form=None, param=None, range=None, objective="max-abs", zone=0.5,
            ops="all", max_cost=6, max_forms=None, time=540.0, seed=1, threads=0, measure_cost=True):
     """The lobe designer (specula design, docs/designer.md): searches cheap lobe shapes against the
     target over `range` of its parameter `param` (both None: the target's own, n = (1, 1000) for a
     lobe), fits them for `objective` ('max-abs',
     'max-rel' or 'both'), normalizes, checks and times them, and returns the Pareto front as a
     DesignResult. The target is a lobe, a function of c ("expr: (1 - c)^5") or an engine term
-    ("fresnel-dielectric", "fresnel-conductor", "schlick-weight"). ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
+    ("fresnel-dielectric", "fresnel-conductor", "schlick-weight", "smith-g2-ggx"); vars: a function
+    target's per-pixel variables (default c, or the term's: ["NoV", "NoL"]). ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
     model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget).
 
     >>> r = specula.design("phong", range=(1, 100), ops="mul", max_cost=1, measure_cost=False, time=60)
     >>> [lobe["formula"] for lobe in r.front]
     ['c', 'c ^ 2']
     """
-    return DesignResult(_design(dict(target=target, params=dict(params if params is not None else {}), form=form, param=param, range=range,
+    return DesignResult(_design(dict(target=target, vars=None if vars is None else list(vars), params=dict(params if params is not None else {}), form=form, param=param, range=range,
                                       objective=objective, zone=zone, ops=ops, max_cost=max_cost,
                                       max_forms=max_forms, time=time, seed=seed, threads=threads,
                                       measure_cost=measure_cost)))

@@ -73,6 +73,7 @@ class FitResult:
 class DesignResult:
     front: list[dict[str, Any]]
     references: list[dict[str, Any]]
+    refused: list[dict[str, Any]]
     toml: str
     csv: str
     json: str
@@ -122,7 +123,7 @@ def fit(X: npt.ArrayLike | dict[str, npt.ArrayLike], y: npt.ArrayLike, *, variab
         threads: int = ..., islands: int = ..., population: int = ..., enumerate_size: int = ...,
         choose: Literal["parsimonious", "knee", "best"] = ..., choose_factor: float = ..., snap: bool = ...,
         starts: Sequence[str] = ...) -> FitResult: ...
-def design(target: str = ..., *, params: dict[str, float] | None = ..., form: Literal["rv", "nh"] | None = ...,
+def design(target: str = ..., *, vars: list[str] | None = ..., params: dict[str, float] | None = ..., form: Literal["rv", "nh"] | None = ...,
            param: str | None = ..., range: tuple[float, float] | None = ..., objective: Literal["max-abs", "max-rel", "both"] = ...,
            zone: float = ..., ops: str = ..., max_cost: int = ..., max_forms: int | None = ..., time: float = ...,
            seed: int = ..., threads: int = ..., measure_cost: bool = ...) -> DesignResult: ...

@@ -149,8 +149,10 @@ py::dict design_run(const py::dict& kwargs) {
   s.target = argument<std::string>(kwargs["target"], "target");
   for (const auto& [key, value] : kwargs["params"].cast<py::dict>()) s.params[py::str(key)] = argument<double>(value, "params");
   if (!kwargs["form"].is_none()) s.form = queries::form_named(argument<std::string>(kwargs["form"], "form"), Spelling::key);
+  s.variables = kwargs["vars"].is_none() ? design::default_variables(s.target)
+                                         : argument<std::vector<std::string>>(kwargs["vars"], "vars");
   if (kwargs["param"].is_none() && kwargs["range"].is_none()) {  // the target's own range
-    const design::DefaultRange r = design::default_range(s.target);
+    const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
   } else {
     s.param = kwargs["param"].is_none() ? std::string("n") : argument<std::string>(kwargs["param"], "param");
@@ -178,6 +180,7 @@ py::dict design_run(const py::dict& kwargs) {
   py::dict out;
   out["front"] = lobe_list(r.front);
   out["references"] = lobe_list(r.references);
+  out["refused"] = lobe_list(r.refused);
   out["toml"] = design::models_toml(r);
   out["csv"] = design::front_csv(r);
   out["table"] = design::front_table(r);

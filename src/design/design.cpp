@@ -9,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
-#include <regex>
 #include <map>
 #include <mutex>
 #include <tbb/parallel_for.h>
@@ -145,14 +144,6 @@ std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> f
   return l;
 }
 
-// `formula` with each of `params` (the target's fixed parameters, κ) written as its value.
-std::string with_values(std::string_view formula, const ParamValues& params) {
-  std::string out(formula);
-  for (const auto& [name, value] : params)
-    out = std::regex_replace(out, std::regex("\\b" + name + "\\b"), fmt::format("({})", value));
-  return out;
-}
-
 // The built-in bare lobes with the range parameter (one per family), and the spherical Gaussian
 // e^(n(c − 1)) where the parameter is n.
 std::vector<Lobe> reference_lobes(const Settings& s) {
@@ -160,8 +151,8 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
   if (is_function_target(s.target)) {  // a term's: the engines' approximations and the term itself
     ParamValues fixed = s.params;  // the target's other parameters, given or at their defaults
     const auto info = model_definition("lobe: " + function_formula(s.target));
-    for (const ParamInfo& p : info->params)
-      if (p.name != s.param) fixed.emplace(p.name, p.default_value);
+    for (const ParamInfo& p : info->params)  // a lobe formula's free names: the per-pixel variables are not parameters
+      if (p.name != s.param && std::ranges::find(s.variables, p.name) == s.variables.end()) fixed.emplace(p.name, p.default_value);
     for (const TermReference& r : term_references()) {
       if (r.term != s.target) continue;
       Lobe l;
@@ -196,6 +187,7 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
 // Times every lobe in one harness: formulas compiled as native kernels, built-ins through the
 // benchmark's kernels at their fastest tier. Returns a note on how.
 std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stopper& stopper) {
+  if (s.variables.size() > 1) return "not timed: the native kernels take one per-pixel variable; cost is the cost model's";
   const double p = timing_param(s);
   std::vector<NativeLobe> natives;
   std::vector<Lobe*> native_lobes, builtin_lobes;
@@ -251,6 +243,7 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
 // SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
 std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   const Settings& s = result.settings;
+  if (s.variables.size() > 1) return "SPIR-V not counted: the lobe shader takes one per-pixel variable";
   const ScratchDirectory work("spirv");
   std::string why;
   const auto count = [&](Lobe& l) {
@@ -263,13 +256,37 @@ std::string count_spirv(Result& result, const std::function<bool()>& stop) {
                      : "SPIR-V not counted: " + why;
 }
 
+// The Pareto front of `candidates` with every member passing `specula check` normalized: a member
+// that fails leaves for `refused` (its check says why) and the front is taken again without it,
+// until none fails. A function of c is not a lobe: nothing to normalize or check ("-").
+std::vector<Lobe> passing_front(std::vector<Lobe> candidates, std::vector<Lobe>& refused, const Settings& s, bool timed,
+                                const std::function<bool()>& stop) {
+  for (;;) {
+    std::vector<Lobe> front = pareto(candidates, s.objective, timed);
+    std::vector<std::string> failing;
+    for (Lobe& m : front) {
+      const auto it = std::ranges::find(candidates, m.formula, &Lobe::formula);
+      if (it->check.empty()) is_function_target(s.target) ? void(it->check = "-") : normalize_and_check(*it, s, stop);
+      m = *it;
+      if (m.check != "pass" && m.check != "-") failing.push_back(m.formula);
+    }
+    if (failing.empty()) return front;
+    for (const std::string& formula : failing) {
+      const auto it = std::ranges::find(candidates, formula, &Lobe::formula);
+      refused.push_back(std::move(*it));
+      candidates.erase(it);
+    }
+  }
+}
+
 // The members placed against the references, measured in the same run: the references' errors,
 // every lobe timed, the Pareto front with its ids.
 template <class Tell>
 void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stopper, const Tell& tell) {
   const Settings& s = result.settings;
   const auto stop = [&] { return stopper.cancelled(); };
-  members = pareto(std::move(members), s.objective, false);
+  // Every finished lobe stays a candidate (not only the cost model's front): one that a refused
+  // member dominated may enter the front in its place.
   result.references = reference_lobes(s);
   if (!result.cancelled) {
     try {
@@ -297,16 +314,20 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
     result.cost_note = "not timed: cost is the cost model's";
   }
   const bool timed = std::ranges::all_of(members, [](const Lobe& m) { return std::isfinite(m.ns_per_eval); });
-  members = pareto(std::move(members), s.objective, timed);
   const std::string prefix = s.target.find(':') == std::string::npos ? s.target
                              : std::string(is_function_target(s.target) ? "expr" : "lobe");
-  for (std::size_t i = 0; i < members.size(); ++i) members[i].id = fmt::format("{}-d{}", prefix, i + 1);
-  result.front = std::move(members);
-  if (!result.cancelled) {
-    tell("checking", 0, static_cast<std::int64_t>(result.front.size()), nullptr);
+  const auto name = [&](std::vector<Lobe>& lobes, std::string_view kind) {
+    for (std::size_t i = 0; i < lobes.size(); ++i) lobes[i].id = fmt::format("{}-{}{}", prefix, kind, i + 1);
+  };
+  if (result.cancelled) {  // not checked: the front as it stands
+    result.front = pareto(std::move(members), s.objective, timed);
+    name(result.front, "d");
+  } else {
+    tell("checking", 0, static_cast<std::int64_t>(members.size()), nullptr);
     try {
-      // A function of c is not a lobe: no k, no energy to check.
-      for (auto& m : result.front) is_function_target(s.target) ? void(m.check = "-") : normalize_and_check(m, s, stop);
+      result.front = passing_front(std::move(members), result.refused, s, timed, stop);
+      name(result.front, "d");
+      name(result.refused, "refused");
       result.spirv_note = count_spirv(result, stop);
     } catch (const Interrupted&) {
       result.cancelled = true;
@@ -317,9 +338,28 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
   tell("done", 1, 1, &result.front);
 }
 
+// A function target on its fits' rows at every value of the measurement's grid: finite, ≥ 0 and
+// at most Ranges::target_max.
+void validate_function_values(const Settings& s) {
+  for (double p : param_grid(s.lo, s.hi, kVerifyGrid)) {
+    const Samples rows = function_rows(s, p);
+    for (std::size_t r = 0; r < rows.value.size(); ++r) {
+      const double v = rows.value[r];
+      if (std::isfinite(v) && v >= 0 && v <= Ranges::target_max) continue;
+      std::string at;
+      for (std::size_t i = 0; i < s.variables.size(); ++i) at += fmt::format("{}{} = {:.6g}", i ? ", " : "", s.variables[i], rows.x[i][r]);
+      if (!s.param.empty()) at += fmt::format(", {} = {:.6g}", s.param, p);
+      throw InvalidField("target", fmt::format("the target '{}' is {} at {} ({:g}): a target must be finite, ≥ 0 and at most "
+                                               "{:g} over the box", s.target, !std::isfinite(v) ? "not finite" : v < 0 ? "negative" : "too large",
+                                               at, v, Ranges::target_max));
+    }
+  }
+}
+
 // The target on the probe at every value of the measurement's grid: finite, ≥ 0 and at most
 // Ranges::target_max, as the fits and the measurement need it.
 void validate_target_values(const Settings& s) {
+  if (is_function_target(s.target)) return validate_function_values(s);
   for (double p : param_grid(s.lo, s.hi, kVerifyGrid)) {
     const lobes::Lobe target = target_at(s, p).lobe();
     for (double u : probe_log_cos()) {
@@ -348,6 +388,7 @@ std::string params_text(const ParamValues& params) {
 // The settings that make shards one search, each as text at full precision.
 std::vector<std::pair<std::string_view, std::string>> search_keys(const Settings& s) {
   return {{"target", s.target},
+          {"variables", fmt::format("{}", fmt::join(s.variables, ","))},
           {"parameters", params_text(s.params)},
           {"form", s.form ? to_string(*s.form) : "(the target's own)"},
           {"range", fmt::format("{}={}:{}", s.param, s.lo, s.hi)},
@@ -474,18 +515,60 @@ void validate_range(const Settings& s, const ModelInfo& info) {
     throw InvalidField("range", fmt::format("the range {:g}:{:g} is outside {}'s range {}", s.lo, s.hi, s.param, p->range_text()));
 }
 
+bool is_identifier(const std::string& name) {
+  return !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+         std::ranges::all_of(name, [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
+}
+
+// A function target: its variables named once each, identifiers, distinct from the parameters and
+// each used by the formula; the formula parses in them (any other name is a parameter given its
+// value); the range, if any, not empty.
+void validate_function_target(const Settings& s) {
+  if (s.variables.empty() || s.variables.size() > kMaxVariables)
+    throw InvalidField("vars", fmt::format("a target has 1 to {} per-pixel variables, got {}", kMaxVariables, s.variables.size()));
+  for (std::size_t i = 0; i < s.variables.size(); ++i) {
+    const std::string& v = s.variables[i];
+    if (!is_identifier(v)) throw InvalidField("vars", fmt::format("'{}' is not a variable name", v));
+    if (std::ranges::count(s.variables, v) > 1) throw InvalidField("vars", fmt::format("the variable {} is named twice", v));
+    if (v == s.param || s.params.contains(v))
+      throw InvalidField("vars", fmt::format("{} is a parameter and a per-pixel variable at once", v));
+  }
+  const expr::Expression f = [&] {
+    try {
+      return function_expression(s);
+    } catch (const InvalidArgument& e) {
+      throw InvalidField("target", fmt::format("the target '{}': {}", s.target, e.what()));
+    }
+  }();
+  for (std::uint32_t i = 0; i < s.variables.size(); ++i)
+    if (std::ranges::none_of(f.nodes(), [&](const expr::Node& n) { return n.op == expr::Op::variable && n.var == i; }))
+      throw InvalidField("vars", fmt::format("the target does not use the variable {}", s.variables[i]));
+  if (s.param.empty()) {
+    if (s.lo != s.hi) throw InvalidField("range", "a target without parameters has no range: lo = hi");
+    return;
+  }
+  if (!(s.lo < s.hi) || !std::isfinite(s.lo) || !std::isfinite(s.hi))
+    throw InvalidField("range", fmt::format("the range of {} is empty or not finite: {:g} to {:g}", s.param, s.lo, s.hi));
+  if (std::ranges::none_of(f.nodes(), [&](const expr::Node& n) { return n.op == expr::Op::variable && n.var == s.variables.size(); }))
+    throw InvalidField("range", fmt::format("the target '{}' has no parameter '{}'", s.target, s.param));
+}
+
 }  // namespace
 
 void validate(const Settings& s) {
-  std::shared_ptr<const ModelInfo> info;
-  try {
-    const std::string model = is_function_target(s.target) ? "lobe: " + function_formula(s.target) : s.target;
-    info = model_definition(model, s.params);
-  } catch (const InvalidField& e) {  // the catalogue names its argument "model": here it is the target
-    throw InvalidField(e.field() == "model" ? "target" : e.field(), e.what());
+  if (is_function_target(s.target)) {
+    validate_function_target(s);
+  } else {
+    std::shared_ptr<const ModelInfo> info;
+    try {
+      info = model_definition(s.target, s.params);
+    } catch (const InvalidField& e) {  // the catalogue names its argument "model": here it is the target
+      throw InvalidField(e.field() == "model" ? "target" : e.field(), e.what());
+    }
+    if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
+    if (s.variables != kLobeVariables) throw InvalidField("vars", "a lobe's one variable is c: --vars is for functions");
+    validate_range(s, *info);
   }
-  if (info->kind != ModelKind::lobe) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
-  validate_range(s, *info);
   if (s.lo > 0 && s.hi / s.lo > Ranges::range_ratio)
     throw InvalidField("range", fmt::format("the range spans over {:g} times", Ranges::range_ratio));
   if (s.operations.empty()) throw InvalidField("ops", "no operations to build lobes with");
@@ -502,7 +585,7 @@ void validate(const Settings& s) {
   if (!(s.zone > 0 && s.zone < 1)) throw InvalidField("zone", fmt::format("zone must be in (0, 1), got {:g}", s.zone));
   for (const auto& [name, value] : s.params)
     if (name == s.param) throw InvalidField("params", fmt::format("{} is the range parameter; give its range with --range", name));
-  (void)target_at(s, s.lo);  // the other parameters are the target's and in range
+  if (!is_function_target(s.target)) (void)target_at(s, s.lo);  // the other parameters are the target's and in range
   validate_target_values(s);
   if (s.measure_cost) {  // a compiler or time limit the user named but cannot have: said now, not after the search
     (void)native_compiler();
@@ -525,7 +608,7 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   // parameter values.
   const auto limit = static_cast<std::size_t>(s.max_forms.value_or(Ranges::forms));
   const std::vector<Shape> all =
-      enumerate_shapes(s.operations, s.max_cost, limit, [&] { return stopper.cancelled() || stopper.out_of_time(); });
+      enumerate_shapes(s.operations, s.max_cost, limit, [&] { return stopper.cancelled() || stopper.out_of_time(); }, s.variables);
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);

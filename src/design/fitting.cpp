@@ -40,15 +40,17 @@ fit::Metric metric_of(const Settings& s) {
   return s.objective == Objective::max_rel ? fit::Metric::max_rel : fit::Metric::max_abs;
 }
 
-// The shape's expression with the first `fixed` constants turned into variables k0, k1, … after c.
-expr::Expression with_fixed(const Shape& shape, std::size_t fixed, std::span<const double> free_values) {
+// The shape's expression with the first `fixed` constants turned into variables k0, k1, … after
+// the per-pixel variables.
+expr::Expression with_fixed(const Shape& shape, std::size_t fixed, std::span<const double> free_values,
+                            const std::vector<std::string>& names) {
   std::vector<Node> nodes = shape.nodes;
-  std::vector<std::string> variables{"c"};
+  std::vector<std::string> variables = names;
   for (std::size_t k = 0; k < fixed; ++k) variables.push_back(fmt::format("k{}", k));
   std::size_t index = 0, free_index = 0;
   for (auto& n : nodes)
     if (n.op == Op::constant && !expr::is_exact(n)) {
-      if (index < fixed) n = {Op::variable, static_cast<std::uint32_t>(index + 1), 0};
+      if (index < fixed) n = {Op::variable, static_cast<std::uint32_t>(index + names.size()), 0};
       else n.value = free_values[free_index++];
       ++index;
     }
@@ -81,13 +83,13 @@ double lobe_error(const expr::Expression& e, const fit::Data& data, const Settin
   return worst;
 }
 
-fit::Data data_for(const Samples& rows, std::span<const double> fixed) {
+fit::Data data_for(const Samples& rows, std::span<const double> fixed, const std::vector<std::string>& names) {
   fit::Data data;
-  data.variables.push_back("c");
-  data.columns.push_back(rows.c);
+  data.variables = names;
+  data.columns = rows.x;
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     data.variables.push_back(fmt::format("k{}", k));
-    data.columns.emplace_back(rows.c.size(), fixed[k]);
+    data.columns.emplace_back(rows.value.size(), fixed[k]);
   }
   data.target = rows.value;
   return data;
@@ -95,8 +97,8 @@ fit::Data data_for(const Samples& rows, std::span<const double> fixed) {
 
 Fitted fit_once(const Shape& shape, const Samples& rows, const Settings& s, std::span<const double> fixed,
                 std::span<const double> start) {
-  const fit::Data data = data_for(rows, fixed);
-  expr::Expression e = with_fixed(shape, fixed.size(), start);
+  const fit::Data data = data_for(rows, fixed, s.variables);
+  expr::Expression e = with_fixed(shape, fixed.size(), start, s.variables);
   if (shape.constants > static_cast<int>(fixed.size())) e = fit::fit_formula_constants(e, data, metric_of(s)).formula;
   Fitted out;
   out.constants.assign(fixed.begin(), fixed.end());
@@ -106,6 +108,13 @@ Fitted fit_once(const Shape& shape, const Samples& rows, const Settings& s, std:
 }
 
 }  // namespace
+
+std::vector<double> evaluate_rows(const expr::Expression& e, const std::vector<std::vector<double>>& columns) {
+  std::vector<std::span<const double>> spans(columns.begin(), columns.end());
+  std::vector<double> values(columns.empty() ? 0 : columns.front().size());
+  expr::evaluate_batch(e, spans, values);
+  return values;
+}
 
 std::vector<double> param_grid(double lo, double hi, std::size_t count) {
   std::vector<double> out;
@@ -120,45 +129,61 @@ std::vector<double> param_grid(double lo, double hi, std::size_t count) {
 
 namespace {
 
-// A function of c over (0, 1]: rows even in c, and as many again in c², denser toward grazing
-// (c → 0), where Fresnel's terms change fastest. max_rel keeps the rows at ≥ zone × the largest.
-Samples function_samples_at(const Settings& s, double p) {
-  Samples out{p, target_at(s, p).lobe(), {}, {}};
-  constexpr std::size_t kRows = 64;
-  for (std::size_t i = 1; i <= kRows; ++i) {
-    const double t = static_cast<double>(i) / kRows;
-    for (const double c : {t, t * t / 4}) {
-      const double value = lobes::eval(out.target, c);
-      if (!std::isfinite(value)) continue;
-      out.c.push_back(c);
-      out.value.push_back(value);
-    }
-  }
-  if (s.objective == Objective::max_rel) {
-    const double top = *std::ranges::max_element(out.value);
-    Samples kept{p, out.target, {}, {}};
-    for (std::size_t r = 0; r < out.c.size(); ++r)
-      if (out.value[r] >= s.zone * top && out.value[r] > 0) {
-        kept.c.push_back(out.c[r]);
-        kept.value.push_back(out.value[r]);
-      }
-    out = std::move(kept);
-  }
-  if (out.c.empty()) throw InvalidField("target", fmt::format("the target has no usable row at {} = {:g}", s.param, p));
+// One variable's values over (0, 1]: `count` even, and half as many again in t²/4, denser toward
+// grazing (a cosine → 0), where Fresnel's and Smith's terms change fastest.
+std::vector<double> axis(std::size_t count) {
+  std::vector<double> out;
+  for (std::size_t i = 1; i <= count; ++i) out.push_back(static_cast<double>(i) / count);
+  for (std::size_t i = 1; i <= count / 2; ++i) out.push_back(std::pow(static_cast<double>(i) / (count / 2), 2) / 4);
+  std::ranges::sort(out);
   return out;
+}
+
+// A function target's rows at p, filtered: finite, and for max_rel ≥ zone × the largest.
+Samples function_samples_at(const Settings& s, double p) {
+  const Samples all = function_rows(s, p);
+  double top = 0;
+  for (double v : all.value)
+    if (std::isfinite(v)) top = std::max(top, v);
+  const auto keep = [&](std::size_t r) {
+    const double v = all.value[r];
+    return std::isfinite(v) && (s.objective != Objective::max_rel || (v >= s.zone * top && v > 0));
+  };
+  Samples kept{p, {}, std::vector<std::vector<double>>(all.x.size()), {}};
+  for (std::size_t r = 0; r < all.value.size(); ++r) {
+    if (!keep(r)) continue;
+    for (std::size_t v = 0; v < all.x.size(); ++v) kept.x[v].push_back(all.x[v][r]);
+    kept.value.push_back(all.value[r]);
+  }
+  if (kept.value.empty()) throw InvalidField("target", fmt::format("the target has no usable row at {} = {:g}", s.param, p));
+  return kept;
 }
 
 }  // namespace
 
+Samples function_rows(const Settings& s, double p) {
+  const std::size_t k = s.variables.size();
+  const std::vector<double> values = axis(k == 1 ? 86 : k == 2 ? 16 : 8);
+  Samples out{p, {}, std::vector<std::vector<double>>(k), {}};
+  std::size_t rows = 1;
+  for (std::size_t v = 0; v < k; ++v) rows *= values.size();
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t v = 0, rest = r; v < k; ++v, rest /= values.size()) out.x[v].push_back(values[rest % values.size()]);
+  std::vector<std::vector<double>> columns = out.x;
+  if (!s.param.empty()) columns.emplace_back(rows, p);
+  out.value = evaluate_rows(function_expression(s), columns);
+  return out;
+}
+
 Samples samples_at(const Settings& s, double p) {
   if (is_function_target(s.target)) return function_samples_at(s, p);
-  Samples out{p, target_at(s, p).lobe(), {}, {}};
+  Samples out{p, target_at(s, p).lobe(), {{}}, {}};
   const double width = half_max_u(out.target);
   const auto add = [&](double u) {
     const double value = lobes::at_log_cos(out.target, u);
     if (!std::isfinite(value)) return;
     if (s.objective == Objective::max_rel && !(value >= s.zone)) return;
-    out.c.push_back(std::exp(-u));
+    out.x[0].push_back(std::exp(-u));
     out.value.push_back(value);
   };
   if (std::isfinite(width))
@@ -170,12 +195,12 @@ Samples samples_at(const Settings& s, double p) {
     const double c = static_cast<double>(i) / static_cast<double>(kUniformRows - 1);
     add(c > 0 ? -std::log(c) : 745.0);
   }
-  if (out.c.empty()) throw InvalidField("target", fmt::format("the target is nowhere ≥ the zone at {} = {:g}", s.param, p));
+  if (out.value.empty()) throw InvalidField("target", fmt::format("the target is nowhere ≥ the zone at {} = {:g}", s.param, p));
   return out;
 }
 
 double shape_error(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s) {
-  return lobe_error(with_constants(shape, constants), data_for(rows, {}), s, rows.value);
+  return lobe_error(with_constants(shape, constants, s.variables), data_for(rows, {}, s.variables), s, rows.value);
 }
 
 GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
@@ -183,7 +208,7 @@ GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const S
   GridFit out;
   const auto fixed_at = [&](std::size_t i) { return fixed.empty() ? std::span<const double>() : std::span<const double>(fixed[i]); };
   std::mt19937_64 rng(s.seed ^ std::hash<std::string>{}(shape.key));
-  const std::vector<double> identity = free_values(shape.expression());  // every a·x + b at a = 1, b = 0
+  const std::vector<double> identity = free_values(shape.expression(s.variables));  // every a·x + b at a = 1, b = 0
   std::vector<double> previous;  // the free constants of the last grid value
   for (std::size_t i = 0; i < grid.size(); ++i) {
     const std::size_t held = fixed_at(i).size();

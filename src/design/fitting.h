@@ -16,15 +16,23 @@ namespace specula::design {
 /// The target at one parameter value, as the fits see it.
 struct Samples {
   double param = 0;
-  lobes::Lobe target;
-  std::vector<double> c, value;  ///< rows: cosines and the target there
+  lobes::Lobe target;                  ///< a lobe target (unused for a function target)
+  std::vector<std::vector<double>> x;  ///< rows: one column per per-pixel variable (c for a lobe)
+  std::vector<double> value;           ///< the target at each row
 };
+
+/// e at each row of `columns` (its variables' values, one column each).
+std::vector<double> evaluate_rows(const expr::Expression& e, const std::vector<std::vector<double>>& columns);
 
 /// `count` parameter values over [lo, hi], log-spaced or even as log_spaced(lo, hi) says.
 std::vector<double> param_grid(double lo, double hi, std::size_t count);
 
 /// The rows the fits use at p: for max_rel only those where the target is ≥ zone.
 Samples samples_at(const Settings& s, double p);
+/// A function target's rows at p, every one: the tensor product of each per-pixel variable's
+/// values over (0, 1] (86 even and 43 in t²/4 for one variable, 16 + 8 a side for two, 8 + 4 for
+/// three), the target evaluated there (non-finite values kept).
+Samples function_rows(const Settings& s, double p);
 
 /// A shape's constants at each grid value, and the error each fit reached.
 struct GridFit {

@@ -50,13 +50,14 @@ double grid_error(const Shape& shape, std::span<const Samples> grid, const std::
 
 }  // namespace
 
-expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expression> laws, const std::string& param) {
+expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expression> laws,
+                                 const std::vector<std::string>& variables, const std::string& param) {
   std::vector<Node> nodes;
   std::size_t k = 0;
   for (const auto& n : shape.nodes) {
     if (n.op == Op::constant && !expr::is_exact(n)) {
       for (Node m : laws[k].nodes()) {
-        if (m.op == Op::variable) m.var = 1;  // the parameter, after c
+        if (m.op == Op::variable) m.var = static_cast<std::uint32_t>(variables.size());  // the parameter, after the variables
         nodes.push_back(m);
       }
       ++k;
@@ -64,13 +65,15 @@ expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expre
       nodes.push_back(n);
     }
   }
-  return expr::Expression(std::move(nodes), {"c", param});
+  std::vector<std::string> names = variables;
+  names.push_back(param);
+  return expr::Expression(std::move(nodes), std::move(names));
 }
 
 std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples> grid, const GridFit& fitted,
                                     const Settings& s, const std::function<bool()>& stop) {
   if (s.param.empty())  // no parameter: the constants are numbers
-    return Lawful{with_constants(shape, fitted.constants.at(0)), fitted.worst};
+    return Lawful{with_constants(shape, fitted.constants.at(0), s.variables), fitted.worst};
   std::vector<double> params;
   for (const auto& g : grid) params.push_back(g.param);
   std::vector<std::vector<double>> constants = fitted.constants;
@@ -107,7 +110,7 @@ std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples>
     if (k + 1 < constant_count) constants = fit_over_grid(shape, grid, s, held).constants;
     else constants = std::move(chosen_constants);
   }
-  Lawful out{substitute_laws(shape, laws, s.param), grid_error(shape, grid, constants, s)};
+  Lawful out{substitute_laws(shape, laws, s.variables, s.param), grid_error(shape, grid, constants, s)};
   return out;
 }
 

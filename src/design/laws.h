@@ -12,7 +12,7 @@ namespace specula::design {
 
 /// The finished lobe: F as one expression in c and the parameter.
 struct Lawful {
-  expr::Expression lobe;   ///< variables c, then the parameter
+  expr::Expression lobe;   ///< variables: the per-pixel ones (c), then the parameter
   double grid_error = 0;   ///< the objective's largest error on the grid's rows
 };
 
@@ -21,7 +21,9 @@ struct Lawful {
 std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples> grid, const GridFit& fitted,
                                     const Settings& s, const std::function<bool()>& stop);
 
-/// The shape with constant k replaced by laws[k] (expressions in the parameter alone).
-expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expression> laws, const std::string& param);
+/// The shape with constant k replaced by laws[k] (expressions in the parameter alone): an
+/// expression in `variables`, then `param`.
+expr::Expression substitute_laws(const Shape& shape, std::span<const expr::Expression> laws,
+                                 const std::vector<std::string>& variables, const std::string& param);
 
 }  // namespace specula::design

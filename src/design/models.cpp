@@ -33,11 +33,15 @@ Model target_at(const Settings& s, double p) {
   return m;
 }
 
-Form target_form(const Settings& s) { return s.form ? *s.form : target_at(s, s.lo).form(); }
+Form target_form(const Settings& s) {
+  if (is_function_target(s.target)) return Form::rv;  // a function of c: its lobe model's form is c's own
+  return s.form ? *s.form : target_at(s, s.lo).form();
+}
 
 std::vector<std::string> formula_variables(const Settings& s) {
-  if (s.param.empty()) return {"c"};
-  return {"c", s.param};
+  std::vector<std::string> out = s.variables;
+  if (!s.param.empty()) out.push_back(s.param);
+  return out;
 }
 
 bool is_formula(const Lobe& l) { return !l.reference || l.evaluable; }

@@ -47,8 +47,8 @@ std::string normalization_of(const Lobe& l) {
   return l.k_formula.empty() ? "quadrature" : l.k_formula;
 }
 
-std::string row(const Lobe& l, double log) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), l.reference ? "reference" : "member",
+std::string row(const Lobe& l, double log, std::string_view kind) {
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), kind,
                      csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
                      number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
                      l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
@@ -155,6 +155,15 @@ class DesignReader {
   Settings settings(const Json& j) const {
     Settings s;
     s.target = text(j, "target");
+    if (j.contains("variables")) {  // written since the function targets; c before
+      const Json& variables = value(j, "", "variables");
+      if (!variables.is_array()) fail("'variables'", "must be an array of names");
+      s.variables.clear();
+      for (const Json& v : variables) {
+        if (!v.is_string()) fail("'variables'", "must be an array of names");
+        s.variables.push_back(v.get<std::string>());
+      }
+    }
     const Json& params = value(j, "", "params");
     if (!params.is_object()) fail("'params'", "must be an object of numbers");
     for (const auto& [name, v] : params.items()) s.params[name] = number(params, name, "'params'.");
@@ -215,8 +224,8 @@ class DesignReader {
       fail(fmt::format("{}'model_cost'", prefix), fmt::format("must be an integer in [0, max_cost = {}]", s.max_cost));
     l.model_cost = cost.get<int>();
     parsed(fmt::format("{}'formula':", prefix), [&] {
-      (void)expr::parse(l.formula, formula_variables(s));  // a formula in c and the parameter
-      (void)lobe_at(l, s);                            // … that is a lobe model
+      (void)expr::parse(l.formula, formula_variables(s));     // a formula in the variables and the parameter
+      if (!is_function_target(s.target)) (void)lobe_at(l, s);  // … that is a lobe model
     });
     return l;
   }
@@ -229,8 +238,9 @@ std::string front_csv(const Result& result) {
       "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
       "spirv_instructions,model_cost,shape,timing,k,check,normalization\n";
   const double log = log_ns(result);
-  for (const auto& l : result.front) out += row(l, log);
-  for (const auto& l : result.references) out += row(l, log);
+  for (const auto& l : result.front) out += row(l, log, "member");
+  for (const auto& l : result.references) out += row(l, log, "reference");
+  for (const auto& l : result.refused) out += row(l, log, "refused");
   return out;
 }
 
@@ -292,6 +302,8 @@ std::string front_table(const Result& result) {
   for (const auto& l : result.references) line(l);
   for (const auto& l : result.front)
     if (!l.check.empty() && l.check != "pass" && l.check != "-") out += fmt::format("{}: check {}\n", l.id, l.check);
+  if (!result.refused.empty()) out += "refused (their normalized twin fails specula check):\n";
+  for (const auto& l : result.refused) out += fmt::format("{:<22} {:>10.4g}  {}: {}\n", l.id, l.max_abs, shown(l), l.check);
   return out;
 }
 
@@ -299,7 +311,7 @@ std::string design_json(const Result& result) {
   const Settings& s = result.settings;
   nlohmann::json ops = nlohmann::json::array();
   for (Operation op : s.operations) ops.push_back(to_string(op));
-  nlohmann::json j{{"target", s.target}, {"params", s.params}, {"form", s.form ? to_string(*s.form) : ""},
+  nlohmann::json j{{"target", s.target}, {"variables", s.variables}, {"params", s.params}, {"form", s.form ? to_string(*s.form) : ""},
                    {"param", s.param}, {"lo", s.lo}, {"hi", s.hi}, {"objective", to_string(s.objective)},
                    {"zone", s.zone}, {"ops", ops}, {"max_cost", s.max_cost}, {"seed", s.seed},
                    {"shard", s.shard}, {"shards", s.shards}, {"forms_screened", result.forms_screened},

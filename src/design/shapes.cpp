@@ -22,17 +22,20 @@ Node constant(double value) { return {Op::constant, 0, value}; }
 Node exact(int value) { return expr::exact_constant(value, 1, expr::Symbol::one); }
 Node op(Op o) { return {o, 0, 0}; }
 
+// The names shapes are printed with (their keys): the search's per-pixel variables.
+thread_local const std::vector<std::string>* key_names = nullptr;
+
 std::string key_of(const std::vector<Node>& nodes) {
   std::vector<Node> printed = nodes;
   // Every free constant prints as the same number, so the key is the structure alone.
   for (auto& n : printed)
     if (n.op == Op::constant && !expr::is_exact(n)) n.value = 7;
-  return expr::to_infix(expr::Expression(std::move(printed), {"c"}));
+  return expr::to_infix(expr::Expression(std::move(printed), *key_names));
 }
 
-Shape leaf() {
+Shape leaf(std::uint32_t variable) {
   Shape s;
-  s.nodes = {{Op::variable, 0, 0}};
+  s.nodes = {{Op::variable, variable, 0}};
   s.key = key_of(s.nodes);
   s.nonnegative = true;
   return s;
@@ -112,9 +115,9 @@ constexpr BinaryStep kBinary[] = {{Operation::mul, Step::product, true},
 
 }  // namespace
 
-expr::Expression Shape::expression() const { return expr::Expression(nodes, {"c"}); }
+expr::Expression Shape::expression(const std::vector<std::string>& variables) const { return expr::Expression(nodes, variables); }
 
-expr::Expression with_constants(const Shape& shape, std::span<const double> values) {
+expr::Expression with_constants(const Shape& shape, std::span<const double> values, const std::vector<std::string>& variables) {
   std::vector<Node> nodes = shape.nodes;
   std::size_t k = 0;
   for (auto& n : nodes)
@@ -122,11 +125,15 @@ expr::Expression with_constants(const Shape& shape, std::span<const double> valu
       if (k >= values.size()) throw InvalidArgument("fewer constant values than the shape's constants");
       n.value = values[k++];
     }
-  return expr::Expression(std::move(nodes), {"c"});
+  return expr::Expression(std::move(nodes), variables);
 }
 
 std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit,
-                                    const std::function<bool()>& stop) {
+                                    const std::function<bool()>& stop, const std::vector<std::string>& variables) {
+  key_names = &variables;
+  struct Reset {
+    ~Reset() { key_names = nullptr; }
+  } reset;
   const auto allowed = [&](Operation o) { return std::ranges::find(operations, o) != operations.end(); };
   // at_most[cost][k]: the indices into `all` of the shapes of that cost with at most k free
   // constants, in the order found. A binary step pairs x only with the y whose constants fit, so
@@ -149,7 +156,7 @@ std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int m
   const auto shapes = [&](int cost, int max_constants) -> const std::vector<std::size_t>& {
     return at_most[static_cast<std::size_t>(cost)][static_cast<std::size_t>(max_constants)];
   };
-  add(leaf());
+  for (std::uint32_t v = 0; v < variables.size(); ++v) add(leaf(v));
   for (int cost = 1; cost <= max_cost && !full(); ++cost) {
     for (const auto& u : kUnary) {
       const int step_cost = operation_cost(u.operation);

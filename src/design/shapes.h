@@ -14,7 +14,10 @@
 
 namespace specula::design {
 
-/// A lobe shape: postfix nodes over the one variable c; its plain constants are free.
+/// The variables of a lobe's shapes.
+inline const std::vector<std::string> kLobeVariables{"c"};
+
+/// A shape: postfix nodes over the per-pixel variables (c for a lobe); its plain constants are free.
 struct Shape {
   std::vector<expr::Node> nodes;
   std::string key;       ///< to_infix with every free constant printed as "k"
@@ -24,19 +27,22 @@ struct Shape {
   enum class Step { leaf, affine, square, clamp, sqrt, exp, log2, product, sum, quotient } step = Step::leaf;
   bool nonnegative = false;  ///< ≥ 0 for any constants (max, squares, square roots, exp, products of such)
 
-  expr::Expression expression() const;
+  expr::Expression expression(const std::vector<std::string>& variables = kLobeVariables) const;
 };
 
 /// The most free constants a shape may have.
 inline constexpr int kMaxShapeConstants = 4;
 
-/// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma),
-/// cheapest first, then in a fixed order; at most `limit` shapes, fewer when `stop` (asked every
-/// 1024 shapes) says so. Deterministic but for the stop.
+/// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma)
+/// built from the leaves `variables` (one per per-pixel variable), cheapest first, then in a fixed
+/// order; at most `limit` shapes, fewer when `stop` (asked every 1024 shapes) says so.
+/// Deterministic but for the stop.
 std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit,
-                                    const std::function<bool()>& stop = {});
+                                    const std::function<bool()>& stop = {},
+                                    const std::vector<std::string>& variables = kLobeVariables);
 
 /// The expression `shape` with its free constants set to `values` (in node order).
-expr::Expression with_constants(const Shape& shape, std::span<const double> values);
+expr::Expression with_constants(const Shape& shape, std::span<const double> values,
+                                const std::vector<std::string>& variables = kLobeVariables);
 
 }  // namespace specula::design

@@ -3,6 +3,7 @@
 // approximations the engines ship as the front's reference rows.
 #include <algorithm>
 #include <array>
+#include <regex>
 #include <fmt/format.h>
 
 #include "specula/catalogue/catalogue.h"
@@ -20,15 +21,21 @@ constexpr std::string_view kExpr = "expr:";
 // exp, as a GPU's exp2 is one instruction).
 #define KARIS "exp((-3.850245438271745*c - 4.8403576653989875)*c)"
 
-constexpr std::array<Term, 3> kTerms{{
+// Height-correlated Smith masking-shadowing of GGX, G₂ = 4·NoV·NoL·V (Heitz 2014), written as
+// Filament's V_SmithGGXCorrelated is (no division by a cosine squared).
+#define SMITH_GGX "2*NoV*NoL/(NoL*sqrt(NoV^2*(1 - alpha^2) + alpha^2) + NoV*sqrt(NoL^2*(1 - alpha^2) + alpha^2))"
+
+constexpr std::array<Term, 4> kTerms{{
     {"fresnel-dielectric", "fresnel_dielectric(c, eta)", "eta", 1.2, 2.5,
      "the exact Fresnel reflectance of unpolarized light at a dielectric interface of index η"},
     {"fresnel-conductor", "fresnel_conductor(c, eta, kappa)", "eta", 0.1, 3,
      "the exact Fresnel reflectance of a conductor of complex index η + iκ (κ a parameter, -p kappa=…, default 1)"},
     {"schlick-weight", "(1 - c)^5", "", 1, 1, "Schlick's weight (1 − c)⁵, the power every Schlick Fresnel computes"},
+    {"smith-g2-ggx", SMITH_GGX, "alpha", 0.05, 1,
+     "the height-correlated Smith G₂(NoV, NoL; α) of GGX", "NoV,NoL"},
 }};
 
-constexpr std::array<TermReference, 7> kReferences{{
+constexpr std::array<TermReference, 9> kReferences{{
     {"fresnel-dielectric", "schlick", "fresnel_schlick(c, " F0_DIELECTRIC ")",
      "Schlick 1994, with F0 from η: Unreal, Filament, three.js, MaterialX"},
     {"fresnel-dielectric", "unreal-exp2", F0_DIELECTRIC " + (1 - " F0_DIELECTRIC ")*" KARIS,
@@ -38,11 +45,15 @@ constexpr std::array<TermReference, 7> kReferences{{
     {"fresnel-conductor", "exact", "fresnel_conductor(c, eta, kappa)", "the term itself, computed directly"},
     {"schlick-weight", "unreal-exp2", KARIS, "Karis 2013 (Unreal Engine 4): exp2((−5.55473c − 6.98316)c)"},
     {"schlick-weight", "exact", "(1 - c)^5", "the power, computed directly"},
+    {"smith-g2-ggx", "fast-smith", "2*NoV*NoL/(NoV*(NoL*(1 - alpha) + alpha) + NoL*(NoV*(1 - alpha) + alpha))",
+     "Hammon 2017's approximation (Filament's V_SmithGGXCorrelatedFast, Unreal's Vis_SmithJointApprox), as G₂"},
+    {"smith-g2-ggx", "exact", SMITH_GGX, "the term itself, computed directly (Filament's V_SmithGGXCorrelated)"},
 }};
 
 #undef F0_DIELECTRIC
 #undef F0_CONDUCTOR
 #undef KARIS
+#undef SMITH_GGX
 
 const Term* term_named(std::string_view id) {
   const auto it = std::ranges::find(kTerms, id, &Term::id);
@@ -67,14 +78,41 @@ std::string function_formula(std::string_view target) {
   return std::string(trimmed(target.substr(kExpr.size())));
 }
 
-DefaultRange default_range(std::string_view target) {
+std::vector<std::string> default_variables(std::string_view target) {
+  const Term* t = term_named(target);
+  if (!t) return {"c"};
+  std::vector<std::string> out;
+  for (std::size_t start = 0; start <= t->variables.size();) {
+    const std::size_t end = std::min(t->variables.find(',', start), t->variables.size());
+    out.emplace_back(t->variables.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string with_values(std::string_view formula, const ParamValues& params) {
+  std::string out(formula);
+  for (const auto& [name, value] : params)
+    out = std::regex_replace(out, std::regex("\\b" + name + "\\b"), fmt::format("({})", value));
+  return out;
+}
+
+expr::Expression function_expression(const Settings& s, std::string_view formula) {
+  const std::string text = formula.empty() ? function_formula(s.target) : std::string(formula);
+  return expr::parse(with_values(text, s.params), formula_variables(s));
+}
+
+DefaultRange default_range(std::string_view target, const std::vector<std::string>& variables) {
   if (const Term* t = term_named(target)) return {std::string(t->param), t->lo, t->hi};
   if (!target.starts_with(kExpr)) return {"n", 1, 1000};
   const auto info = model_definition("lobe: " + function_formula(target));
-  if (info->params.empty()) return {"", 1, 1};
+  std::vector<const ParamInfo*> params;  // a lobe formula's free names: the variables other than c are not parameters
+  for (const ParamInfo& p : info->params)
+    if (std::ranges::find(variables, p.name) == variables.end()) params.push_back(&p);
+  if (params.empty()) return {"", 1, 1};
   if (info->find_param("n")) return {"n", 1, 1000};
   throw InvalidField("range", fmt::format("give the range of {} with --range {}=LO:HI (the target has no default range)",
-                                          info->params.front().name, info->params.front().name));
+                                          params.front()->name, params.front()->name));
 }
 
 }  // namespace specula::design

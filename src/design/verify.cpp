@@ -8,6 +8,9 @@
 #include <optional>
 
 #include "fitting.h"
+#include <memory>
+#include <span>
+#include <tuple>
 #include "specula/analysis/error.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/interrupt/interrupt.h"
@@ -33,9 +36,9 @@ std::optional<double> non_finite_point(const lobes::Lobe& lobe) {
   return std::nullopt;
 }
 
-// The largest of `error` on [a, b] by golden-section search from the bracket's middle.
+// The largest of `error` on [a, b] by golden-section search, from the best point known.
 template <class Error>
-std::pair<double, double> golden_max(Error error, double a, double b, double best_c, double best) {
+std::pair<double, double> golden_max(Error error, double a, double b, double best_x, double best) {
   constexpr double kGolden = 0.6180339887498949;
   double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a), e1 = error(x1), e2 = error(x2);
   for (int step = 0; step < 60; ++step) {
@@ -45,48 +48,114 @@ std::pair<double, double> golden_max(Error error, double a, double b, double bes
       a = x1, x1 = x2, e1 = e2, x2 = a + kGolden * (b - a), e2 = error(x2);
     }
   }
-  for (const auto& [c, e] : {std::pair{x1, e1}, std::pair{x2, e2}})
-    if (e > best) best_c = c, best = e;
-  return {best_c, best};
+  for (const auto& [x, e] : {std::pair{x1, e1}, std::pair{x2, e2}})
+    if (e > best) best_x = x, best = e;
+  return {best_x, best};
 }
 
-// |F − T| of a function target over c ∈ (0, 1], not in u around a peak: 1024 points even in c,
-// 256 in c² toward grazing and powers of ten down to 1e-300, then golden-section refinement of the worst point's bracket (exact
-// where the error is unimodal within one bracket). max_rel where T ≥ zone × T's largest value.
-analysis::ApproximationError function_error(const lobes::Lobe& f, const lobes::Lobe& t, double zone) {
-  std::vector<double> c;
-  for (int i = 1; i <= 1024; ++i) c.push_back(i / 1024.0);
-  for (int i = 1; i < 256; ++i) c.push_back(std::pow(i / 256.0, 2) / 64);
-  for (int e = -300; e <= -9; e += 3) c.push_back(std::pow(10.0, e));  // the limit at grazing, c → 0⁺
-  std::ranges::sort(c);
-  std::vector<double> target(c.size());
-  for (std::size_t i = 0; i < c.size(); ++i) target[i] = lobes::eval(t, c[i]);
-  const double top = *std::ranges::max_element(target);
-  const auto abs_error = [&](double x) { return std::abs(lobes::eval(f, x) - lobes::eval(t, x)); };
-  const auto rel_error = [&](double x) {
-    const double v = lobes::eval(t, x);
-    return v >= zone * top && v > 0 ? std::abs(lobes::eval(f, x) - v) / v : 0.0;
+// One variable's points over (0, 1] for a function target's error: even, then in t² toward grazing
+// (a cosine → 0), then powers of ten down to 1e-300 (the limit there). 1024 + 255 + 98 points for
+// one variable, 64 + 15 + 10 a side for two, 20 + 4 + 4 for three.
+std::vector<double> error_axis(std::size_t variables) {
+  const int even = variables == 1 ? 1024 : variables == 2 ? 64 : 20;
+  std::vector<double> out;
+  for (int i = 1; i <= even; ++i) out.push_back(static_cast<double>(i) / even);
+  for (int i = 1; i < even / 4; ++i) out.push_back(std::pow(static_cast<double>(i) / (even / 4), 2) / 64);
+  for (int e = -300; e <= -9; e += variables == 1 ? 3 : variables == 2 ? 32 : 80) out.push_back(std::pow(10.0, e));
+  std::ranges::sort(out);
+  return out;
+}
+
+// |F − T| of a function target at parameter p over the box (0, 1]^k of its per-pixel variables: the
+// tensor grid of error_axis, then golden-section refinement around its 8 largest local maxima, one
+// variable at a time within a grid step (two rounds) — exact where the error is unimodal near one.
+// max_rel where T ≥ zone × T's largest value on the grid. argmax_abs_deg: acos of the first variable.
+struct FunctionError {
+  analysis::ApproximationError error;
+  std::optional<double> not_finite_u;
+};
+
+FunctionError function_error(const expr::Expression& f, const expr::Expression& t, const Settings& s, double p) {
+  const std::size_t k = s.variables.size();
+  const std::vector<double> axis = error_axis(k);
+  std::size_t rows = 1;
+  for (std::size_t v = 0; v < k; ++v) rows *= axis.size();
+  std::vector<std::vector<double>> columns(k);
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t v = 0, rest = r; v < k; ++v, rest /= axis.size()) columns[v].push_back(axis[rest % axis.size()]);
+  if (!s.param.empty()) columns.emplace_back(rows, p);
+  const std::vector<double> fv = evaluate_rows(f, columns), tv = evaluate_rows(t, columns);
+  FunctionError out;
+  for (std::size_t r = 0; r < rows; ++r)
+    if (!std::isfinite(fv[r])) {
+      out.not_finite_u = -std::log(columns[0][r]);
+      return out;
+    }
+  const double top = *std::ranges::max_element(tv);
+  std::vector<double> point(columns.size());
+  const auto at = [&](std::span<const double> x) {
+    std::ranges::copy(x, point.begin());
+    if (!s.param.empty()) point.back() = p;
+    return std::pair{expr::evaluate(f, point), expr::evaluate(t, point)};
   };
-  const auto worst = [&](auto error) {
-    std::size_t at = 0;
-    double best = -1;
-    for (std::size_t i = 0; i < c.size(); ++i)
-      if (const double e = error(c[i]); e > best || std::isnan(e)) at = i, best = std::isnan(e) ? INFINITY : e;
-    if (!std::isfinite(best)) return std::pair{c[at], best};
-    return golden_max(error, c[at == 0 ? 0 : at - 1], c[std::min(at + 1, c.size() - 1)], c[at], best);
+  const auto abs_error = [&](std::span<const double> x) { const auto [a, b] = at(x); return std::abs(a - b); };
+  const auto rel_error = [&](std::span<const double> x) {
+    const auto [a, b] = at(x);
+    return b >= s.zone * top && b > 0 ? std::abs(a - b) / b : 0.0;
   };
-  const auto [abs_c, abs_max] = worst(abs_error);
-  analysis::ApproximationError out;
-  out.max_abs = abs_max;
-  out.argmax_abs_deg = std::acos(std::min(1.0, abs_c)) * 180 / std::numbers::pi;
-  out.max_rel_epicenter = worst(rel_error).second;
+  // Refines from each of the grid's 8 largest local maxima (a cusp — a clamp's kink — may peak
+  // between grid points below another point's value), one variable at a time within a grid step, twice.
+  const auto worst = [&](auto error, const std::vector<double>& errors) {
+    // The grid's local maxima (each at least its neighbours along every variable), largest first.
+    const std::size_t n = axis.size();
+    std::vector<std::size_t> order;
+    for (std::size_t r = 0; r < rows; ++r) {
+      bool peak = true;
+      for (std::size_t v = 0, stride = 1, rest = r; v < k && peak; ++v, stride *= n, rest /= n) {
+        const std::size_t i = rest % n;
+        if (i > 0 && errors[r - stride] > errors[r]) peak = false;
+        if (i + 1 < n && errors[r + stride] > errors[r]) peak = false;
+      }
+      if (peak) order.push_back(r);
+    }
+    std::ranges::sort(order, [&](std::size_t a, std::size_t b) { return errors[a] > errors[b]; });
+    // A plateau (the limit at grazing, printed the same at every tiny cosine) counts once.
+    const auto distinct = std::ranges::unique(order, [&](std::size_t a, std::size_t b) { return errors[a] == errors[b]; });
+    order.erase(distinct.begin(), distinct.end());
+    const std::size_t starts = std::min<std::size_t>(8, order.size());
+    std::pair<std::vector<double>, double> best{std::vector<double>(k), -1};
+    for (std::size_t start = 0; start < starts; ++start) {
+      std::vector<double> x(k);
+      for (std::size_t v = 0; v < k; ++v) x[v] = columns[v][order[start]];
+      double found = errors[order[start]];
+      for (int round = 0; round < 2; ++round)
+        for (std::size_t v = 0; v < k; ++v) {
+          const auto it = std::ranges::lower_bound(axis, x[v]);
+          const double a = it == axis.begin() ? axis.front() : *(it - 1), b = it + 1 >= axis.end() ? axis.back() : *(it + 1);
+          if (!(a < b)) continue;
+          std::vector<double> y = x;
+          const auto along = [&](double value) { y[v] = value; return error(y); };
+          std::tie(x[v], found) = golden_max(along, a, b, x[v], found);
+        }
+      if (found > best.second) best = {x, found};
+    }
+    return best;
+  };
+  std::vector<double> abs_errors(rows), rel_errors(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    abs_errors[r] = std::abs(fv[r] - tv[r]);
+    rel_errors[r] = tv[r] >= s.zone * top && tv[r] > 0 ? abs_errors[r] / tv[r] : 0.0;
+  }
+  const auto [abs_x, abs_max] = worst(abs_error, abs_errors);
+  out.error.max_abs = abs_max;
+  out.error.argmax_abs_deg = std::acos(std::min(1.0, abs_x[0])) * 180 / std::numbers::pi;
+  out.error.max_rel_epicenter = worst(rel_error, rel_errors).second;
   return out;
 }
 
 AtParam error_at(const std::function<Model(double)>& lobe_at, const Settings& s, double p) {
-  const lobes::Lobe lobe = lobe_at(p).lobe(), target = target_at(s, p).lobe();
-  if (is_function_target(s.target)) return {p, function_error(lobe, target, s.zone), non_finite_point(lobe)};
-  return {p, analysis::approximation_error(lobe, target, s.zone), non_finite_point(lobe)};
+  const lobes::Lobe lobe = lobe_at(p).lobe();
+  return {p, analysis::approximation_error(lobe, target_at(s, p).lobe(), s.zone), non_finite_point(lobe)};
 }
 
 DomainError not_finite_at(const AtParam& x) {
@@ -96,25 +165,25 @@ DomainError not_finite_at(const AtParam& x) {
 // Golden-section search for the largest `value` on [a, b] in t = log p (or p), from the best
 // of the grid.
 template <class Value>
-AtParam refine(const std::function<Model(double)>& lobe_at, const Settings& s, double a, double b,
+AtParam refine(const std::function<AtParam(double)>& error_at, const Settings& s, double a, double b,
                AtParam best, Value value, const std::function<bool()>& stop) {
   const bool log = log_spaced(s.lo, s.hi);
   const auto to_p = [&](double t) { return log ? std::exp(t) : t; };
   double lo = log ? std::log(a) : a, hi = log ? std::log(b) : b;
   constexpr double kGolden = 0.6180339887498949;
-  AtParam x1 = error_at(lobe_at, s, to_p(hi - kGolden * (hi - lo)));
-  AtParam x2 = error_at(lobe_at, s, to_p(lo + kGolden * (hi - lo)));
+  AtParam x1 = error_at(to_p(hi - kGolden * (hi - lo)));
+  AtParam x2 = error_at(to_p(lo + kGolden * (hi - lo)));
   for (int step = 0; step < kRefineSteps && !stop(); ++step) {
     if (value(x1) > value(best)) best = x1;
     if (value(x2) > value(best)) best = x2;
     if (value(x1) >= value(x2)) {
       hi = log ? std::log(x2.param) : x2.param;
       x2 = x1;
-      x1 = error_at(lobe_at, s, to_p(hi - kGolden * (hi - lo)));
+      x1 = error_at(to_p(hi - kGolden * (hi - lo)));
     } else {
       lo = log ? std::log(x1.param) : x1.param;
       x1 = x2;
-      x2 = error_at(lobe_at, s, to_p(lo + kGolden * (hi - lo)));
+      x2 = error_at(to_p(lo + kGolden * (hi - lo)));
     }
   }
   if (value(x1) > value(best)) best = x1;
@@ -138,13 +207,26 @@ const std::vector<double>& probe_log_cos() {
   return points;
 }
 
+// The error at one parameter value: a lobe's by `specula error`'s maxima, a function's over its box.
+std::function<AtParam(double)> error_at_param(const Lobe& l, const Settings& s) {
+  if (is_function_target(s.target)) {
+    auto f = std::make_shared<const expr::Expression>(function_expression(s, l.formula));
+    auto t = std::make_shared<const expr::Expression>(function_expression(s));
+    return [f, t, &s](double p) {
+      const FunctionError e = function_error(*f, *t, s, p);
+      return AtParam{p, e.error, e.not_finite_u};
+    };
+  }
+  return [lobe_at = design::lobe_at(l, s), &s](double p) { return error_at(lobe_at, s, p); };
+}
+
 DomainError domain_error(const Lobe& l, const Settings& s, const std::function<bool()>& stop) {
-  const std::function<Model(double)> lobe_at = design::lobe_at(l, s);
+  const std::function<AtParam(double)> error_at = error_at_param(l, s);
   const std::vector<double> grid = param_grid(s.lo, s.hi, kVerifyGrid);
   std::vector<AtParam> at;
   for (double p : grid) {
     if (stop()) break;
-    at.push_back(error_at(lobe_at, s, p));
+    at.push_back(error_at(p));
   }
   DomainError out;
   if (at.empty()) return out;
@@ -157,7 +239,7 @@ DomainError domain_error(const Lobe& l, const Settings& s, const std::function<b
     for (std::size_t i = 1; i < at.size(); ++i)
       if (value(at[i]) > value(at[best])) best = i;
     const double a = grid[best == 0 ? 0 : best - 1], b = grid[std::min(best + 1, at.size() - 1)];
-    return a < b ? refine(lobe_at, s, a, b, at[best], value, stop) : at[best];
+    return a < b ? refine(error_at, s, a, b, at[best], value, stop) : at[best];
   };
   const AtParam abs = worst(abs_of), rel = worst(rel_of);
   for (const AtParam& x : {abs, rel})

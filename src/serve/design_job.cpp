@@ -104,6 +104,8 @@ struct DesignJob final : Job {
     for (const auto& l : result.front) out["front"].push_back(lobe_json(l));
     out["references"] = Json::array();
     for (const auto& l : result.references) out["references"].push_back(lobe_json(l));
+    out["refused"] = Json::array();
+    for (const auto& l : result.refused) out["refused"].push_back(lobe_json(l));
     out["cost_note"] = result.cost_note;
     out["spirv_note"] = result.spirv_note;
   }
@@ -112,8 +114,9 @@ struct DesignJob final : Job {
 [[noreturn]] void fail(std::string_view field, const std::string& message) { throw InvalidField(std::string(field), message); }
 
 void read_range(const Fields& f, design::Settings& s) {
+  s.variables = f.has("vars") ? f.names("vars") : design::default_variables(s.target);
   if (!f.has("param") && !f.has("range")) {  // the target's own range
-    const design::DefaultRange r = design::default_range(s.target);
+    const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);
     return;
   }
@@ -130,7 +133,7 @@ void read_range(const Fields& f, design::Settings& s) {
 }  // namespace
 
 std::shared_ptr<Job> design_job(std::string_view body, const Limits& limits) {
-  const Fields f(body, {"target", "params", "form", "param", "range", "objective", "zone", "ops", "max_cost", "max_forms",
+  const Fields f(body, {"target", "vars", "params", "form", "param", "range", "objective", "zone", "ops", "max_cost", "max_forms",
                         "time", "seed", "timing"});
   auto job = std::make_shared<DesignJob>();
   design::Settings& s = job->settings;

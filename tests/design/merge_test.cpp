@@ -114,6 +114,26 @@ TEST(Merge, MeasuresEveryMemberAgainAndUsesOnlyWhatItMeasured) {
   EXPECT_EQ(merged.front[0].argmax_param, truth.argmax_param);
 }
 
+// Only members that pass stay on the front (issue 41): c^n − 0.01 is the most accurate of the two
+// at the same cost, but its normalized twin is negative where c^n < 0.01; it is refused, with why,
+// and the front is taken again without it, so 0.9·c^n (which it dominated) enters.
+TEST(Merge, AMemberThatFailsItsCheckIsRefusedAndTheFrontTakenAgain) {
+  const Scratch scratch;
+  Json j = claiming("c ^ n - 0.01", 0.01);
+  Json second = j["members"][0];
+  second["id"] = "phong-d2";
+  second["formula"] = "0.9 * c ^ n";
+  j["members"].push_back(second);
+  const Result merged = merge({read_design(scratch.shard("0", j))}, untimed());
+  ASSERT_EQ(merged.front.size(), 1u);
+  EXPECT_EQ(merged.front[0].formula, "0.9 * c ^ n");
+  EXPECT_EQ(merged.front[0].check, "pass");
+  ASSERT_EQ(merged.refused.size(), 1u);
+  EXPECT_EQ(merged.refused[0].formula, "c ^ n - 0.01");
+  EXPECT_NE(merged.refused[0].check.find("non-negativity"), std::string::npos) << merged.refused[0].check;
+  EXPECT_NE(front_csv(merged).find(",refused,"), std::string::npos);
+}
+
 TEST(Merge, RefusesALobeThatIsNotFinite) {
   const Scratch scratch;
   // NaN for every c: before, listed on the merged front with the 0.001 it claimed.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "specula/exceptions.h"
+#include "specula/expr/expr.h"
 #include "specula/models/model.h"
 
 namespace specula::design {
@@ -85,6 +86,7 @@ struct Term {
   std::string_view param;    ///< the range parameter ("" for none)
   double lo = 0, hi = 0;     ///< its default range
   std::string_view summary;
+  std::string_view variables = "c";  ///< its per-pixel variables, comma-separated
 };
 
 /// An engine's approximation of a term: a reference row of the front, timed and measured as the
@@ -107,13 +109,21 @@ bool is_function_target(std::string_view target);
 /// The formula of a function target: the text after "expr:", or the Term's formula.
 std::string function_formula(std::string_view target);
 
+/// The most per-pixel variables a function target may have.
+inline constexpr std::size_t kMaxVariables = 3;
+
+/// The per-pixel variables of a target when none are given: a Term's, c otherwise.
+std::vector<std::string> default_variables(std::string_view target);
+
 /// The range a target is searched over when none is given: the Term's, n = 1:1000 for a lobe or
 /// an expression with n, none ("" and 1:1) for an expression without parameters.
 struct DefaultRange {
   std::string param;
   double lo = 1, hi = 1;
 };
-DefaultRange default_range(std::string_view target);
+/// `variables`: the target's per-pixel variables (the free names of an expression that are not
+/// parameters).
+DefaultRange default_range(std::string_view target, const std::vector<std::string>& variables = {"c"});
 
 struct Settings {
   /// A lobe model (id, "lobe: …" or a model-file id), or a function of c: "expr: FORMULA" or a
@@ -121,6 +131,9 @@ struct Settings {
   std::string target = "phong";
   ParamValues params;            ///< the target's other parameters
   std::optional<Form> form;      ///< the target's form (default: its own)
+  /// The per-pixel variables, each over (0, 1]: c for a lobe; a function target may have several
+  /// (NoV, NoL), at most kMaxVariables.
+  std::vector<std::string> variables{"c"};
   std::string param = "n";       ///< the range parameter; "" where the target has none (then lo = hi)
   double lo = 1, hi = 1000;      ///< its range
   Objective objective = Objective::max_abs;
@@ -160,6 +173,9 @@ struct Result {
   Settings settings;
   std::vector<Lobe> front;       ///< members, cheapest first, each more accurate than the cheaper
   std::vector<Lobe> references;  ///< the target's usual approximations, measured in the same run
+  /// Members that would be on the front but whose normalized twin fails `specula check` (`check`
+  /// says what and where): kept out of the front, which is taken again without them.
+  std::vector<Lobe> refused;
   std::int64_t forms_screened = 0;
   std::int64_t forms_total = 0;  ///< this shard's shapes within max_cost and max_forms
   double seconds = 0;
@@ -216,8 +232,14 @@ double timing_param(const Settings& s);
 Model target_at(const Settings& s, double p);
 /// The target's form: the settings', else the target model's own.
 Form target_form(const Settings& s);
-/// The variables of a lobe's formula: c, then the range parameter (if any).
+/// The variables of a lobe's or function's formula: the per-pixel variables, then the range
+/// parameter (if any).
 std::vector<std::string> formula_variables(const Settings& s);
+/// `formula` with each of `params` (a target's fixed parameters, κ) written as its value.
+std::string with_values(std::string_view formula, const ParamValues& params);
+/// A function target's formula (or a member's, a reference's, with `formula` given) as an
+/// expression in formula_variables(s), the target's other parameters written as their values.
+expr::Expression function_expression(const Settings& s, std::string_view formula = {});
 /// Whether l is a formula (every member, and the evaluable references: the spherical Gaussian,
 /// the engines' approximations of a term) rather than a built-in model's id.
 bool is_formula(const Lobe& l);
