@@ -18,7 +18,7 @@ STATE = {
     "lit": {"model": 1, "obj": "bundled", "probe": "bundled", "estimator": "mis", "samples": 64, "exposure": 0},
 }
 # each view's screenshot: the CSS selector of its section
-VIEWS = {"controls": "#controls", "spheres": "#spheres-section", "plots": "#plots", "lobe3d": "#lobe3d-section",
+VIEWS = {"controls": "#models", "light": "#light", "switches": "#switches", "session": "#session", "spheres": "#spheres-section", "plots": "#plots", "lobe3d": "#lobe3d-section",
          "slices": "#slices", "lit": "#lit", "sampling": "#sampling", "fit": "#fit", "design": "#design"}
 
 
@@ -41,6 +41,7 @@ def main():
         browser.open(STATE)
         browser.wait("return document.getElementById('lit-image').dataset.state === 'done';")
         run_jobs(browser)
+        browser.run("document.getElementById('session-save').click();")  # its two files offered as links
         for name, css in VIEWS.items():
             path = pathlib.Path(args.out) / f"lab-{name}.png"
             path.write_bytes(browser.screenshot(css))
