@@ -187,13 +187,12 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
 // Times every lobe in one harness: formulas compiled as native kernels, built-ins through the
 // benchmark's kernels at their fastest tier. Returns a note on how.
 std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stopper& stopper) {
-  if (s.variables.size() > 1) return "not timed: the native kernels take one per-pixel variable; cost is the cost model's";
   const double p = timing_param(s);
   std::vector<NativeLobe> natives;
   std::vector<Lobe*> native_lobes, builtin_lobes;
   for (Lobe* l : lobes) {
     if (is_formula(*l)) {
-      natives.push_back({expr::parse(l->formula, formula_variables(s)), p});
+      natives.push_back({expr::parse(l->formula, formula_variables(s)), p, s.variables.size()});
       native_lobes.push_back(l);
     } else {
       builtin_lobes.push_back(l);

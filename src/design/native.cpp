@@ -7,6 +7,7 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -60,7 +61,7 @@ Value scalar(Op op, const Value& a, const Value* b) {
 
 class Writer {
  public:
-  explicit Writer(std::size_t index) : index_(index) {}
+  Writer(std::size_t index, std::size_t variables) : index_(index), variables_(variables) {}
 
   // The function's text; `operations` counts its vector operations.
   std::string function(const expr::Expression& formula, int& operations) {
@@ -68,9 +69,9 @@ class Writer {
     for (const Node& n : formula.nodes()) {
       switch (expr::arity(n.op)) {
         case 0:
-          stack.push_back(n.op == Op::constant ? Value{true, literal(n.value)}
-                          : n.var == 0         ? Value{false, "x"}
-                                               : Value{true, "p"});
+          stack.push_back(n.op == Op::constant  ? Value{true, literal(n.value)}
+                          : n.var < variables_ ? Value{false, variables_ == 1 ? std::string("x") : fmt::format("x{}", n.var)}
+                                                : Value{true, "p"});
           break;
         case 1: {
           Value a = std::move(stack.back());
@@ -88,6 +89,7 @@ class Writer {
     operations = operations_;
     Value result = stack.back();
     if (result.uniform) result.text = vector_of(result);
+    if (variables_ > 1) return several_variables(result.text);
     std::string out = fmt::format(
         "extern \"C\" void specula_lobe_{}(const float* c, float* out, std::size_t count, double p) {{\n"
         "  const hn::ScalableTag<float> d;\n"
@@ -192,7 +194,48 @@ class Writer {
     unreachable();
   }
 
-  std::size_t index_;
+  // A function of several per-pixel variables: one input array each (in[v]), each clamped to 1
+  // and the value 0 where one is ≤ 0, as for one variable.
+  std::string several_variables(const std::string& result) {
+    std::string out = fmt::format(
+        "extern \"C\" void specula_lobe_{}(const float* const* in, float* out, std::size_t count, double p) {{\n"
+        "  const hn::ScalableTag<float> d;\n"
+        "  const auto zero = hn::Zero(d);\n"
+        "  const auto one = hn::Set(d, 1.0f);\n",
+        index_);
+    for (const auto& u : uniforms_) out += "  " + u + "\n";
+    std::string parameters, clamps, outside;
+    for (std::size_t v = 0; v < variables_; ++v) {
+      parameters += fmt::format("{}hn::Vec<decltype(d)> v{}", v ? ", " : "", v);
+      clamps += fmt::format("    const auto x{} = hn::Min(v{}, one);\n", v, v);
+      outside += v ? fmt::format(", hn::Le(v{}, zero))", v) : "hn::Le(v0, zero)";
+      if (v) outside = "hn::Or(" + outside;
+    }
+    std::string loads, tail_loads, tail_fill;
+    for (std::size_t v = 0; v < variables_; ++v) {
+      loads += fmt::format("{}hn::LoadU(d, in[{}] + i)", v ? ", " : "", v);
+      tail_loads += fmt::format("{}hn::Load(d, tail[{}])", v ? ", " : "", v);
+      tail_fill += fmt::format("    for (std::size_t k = i; k < count; ++k) tail[{}][k - i] = in[{}][k];\n", v, v);
+    }
+    out += fmt::format(
+        "  const auto lobe = [&]({}) {{\n{}"
+        "    return hn::IfThenZeroElse({}, {});\n"
+        "  }};\n"
+        "  const std::size_t lanes = hn::Lanes(d);\n"
+        "  std::size_t i = 0;\n"
+        "  for (; i + lanes <= count; i += lanes) hn::StoreU(lobe({}), d, out + i);\n"
+        "  if (i < count) {{\n"
+        "    alignas(64) float tail[{}][64] = {{}}, result[64];\n{}"
+        "    hn::Store(lobe({}), d, result);\n"
+        "    for (std::size_t k = i; k < count; ++k) out[k] = result[k - i];\n"
+        "  }}\n"
+        "  (void)p;\n"
+        "}}\n",
+        parameters, clamps, outside, result, loads, variables_, tail_fill, tail_loads);
+    return out;
+  }
+
+  std::size_t index_, variables_;
   int operations_ = 0;
   std::vector<std::string> uniforms_;
 };
@@ -208,7 +251,7 @@ NativeSource native_source(const std::vector<NativeLobe>& lobes) {
       "namespace hn = hwy::HWY_NAMESPACE;\n\n";
   for (std::size_t i = 0; i < lobes.size(); ++i) {
     int operations = 0;
-    out.text += Writer(i).function(lobes[i].formula, operations) + "\n";
+    out.text += Writer(i, lobes[i].variables).function(lobes[i].formula, operations) + "\n";
     out.operations.push_back(operations);
   }
   return out;
@@ -254,11 +297,21 @@ NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::fi
   library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!library_) throw std::runtime_error(fmt::format("loading the kernels failed: {}", dlerror()));
   using Function = void (*)(const float*, float*, std::size_t, double);
+  using Several = void (*)(const float* const*, float*, std::size_t, double);
   for (std::size_t i = 0; i < lobes.size(); ++i) {
-    auto f = reinterpret_cast<Function>(dlsym(library_, fmt::format("specula_lobe_{}", i).c_str()));
-    if (!f) throw std::runtime_error("a kernel is missing from the compiled library");
-    kernels_.push_back([f, p = lobes[i].param](std::span<const float> c, std::span<float> out) {
-      f(c.data(), out.data(), std::min(c.size(), out.size()), p);
+    void* symbol = dlsym(library_, fmt::format("specula_lobe_{}", i).c_str());
+    if (!symbol) throw std::runtime_error("a kernel is missing from the compiled library");
+    if (lobes[i].variables == 1) {
+      kernels_.push_back([f = reinterpret_cast<Function>(symbol), p = lobes[i].param](std::span<const float> c, std::span<float> out) {
+        f(c.data(), out.data(), std::min(c.size(), out.size()), p);
+      });
+      continue;
+    }
+    // The other variables' inputs are made from the cosines once per span (the harness calls the
+    // kernel again and again on the same one): the timed work is the kernel's alone.
+    auto inputs = std::make_shared<VariableInputs>(lobes[i].variables);
+    kernels_.push_back([f = reinterpret_cast<Several>(symbol), p = lobes[i].param, inputs](std::span<const float> c, std::span<float> out) {
+      f(inputs->of(c).data(), out.data(), std::min(c.size(), out.size()), p);
     });
   }
   operations_ = source.operations;
@@ -269,15 +322,33 @@ NativeKernels::~NativeKernels() {
   if (library_) dlclose(library_);
 }
 
+const std::vector<const float*>& VariableInputs::of(std::span<const float> c) {
+  if (c.data() != source_ || c.size() != size_) {
+    source_ = c.data();
+    size_ = c.size();
+    values_.assign(pointers_.size(), std::vector<float>(c.size()));
+    for (std::size_t v = 0; v < pointers_.size(); ++v) {
+      for (std::size_t i = 0; i < c.size(); ++i) values_[v][i] = variable_value(c, i, v, pointers_.size());
+      pointers_[v] = values_[v].data();
+    }
+  }
+  return pointers_;
+}
+
 double kernel_deviation(const cost::FloatKernel& kernel, const NativeLobe& lobe) {
   constexpr std::size_t kPoints = 4099;
   std::vector<float> c(kPoints), out(kPoints);
   for (std::size_t i = 0; i < kPoints; ++i) c[i] = static_cast<float>(static_cast<double>(i) / (kPoints - 1));
   kernel(c, out);
   double worst = 0;
+  std::vector<double> x(lobe.variables + 1, lobe.param);
   for (std::size_t i = 0; i < kPoints; ++i) {
-    const double x[] = {static_cast<double>(c[i]), lobe.param};
-    const double expected = c[i] <= 0 ? 0 : expr::evaluate(lobe.formula, x);
+    bool outside = false;
+    for (std::size_t v = 0; v < lobe.variables; ++v) {
+      x[v] = static_cast<double>(variable_value(c, i, v, lobe.variables));
+      outside |= x[v] <= 0;
+    }
+    const double expected = outside ? 0 : expr::evaluate(lobe.formula, x);
     const double d = std::abs(static_cast<double>(out[i]) - expected);
     if (std::isfinite(expected)) worst = std::max(worst, std::isnan(d) ? INFINITY : d);
   }

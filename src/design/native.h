@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,32 @@
 
 namespace specula::design {
 
-/// A lobe to compile: F in c and the parameter, at the parameter value it is timed at.
+/// A lobe to compile: F in c (or in several per-pixel variables) and the parameter, at the
+/// parameter value it is timed at.
 struct NativeLobe {
-  expr::Expression formula;  ///< variables: c, then the parameter
+  expr::Expression formula;  ///< variables: c (or the per-pixel ones), then the parameter
   double param = 20;
+  std::size_t variables = 1;  ///< per-pixel variables, each its own input lanes
+};
+
+/// Per-pixel variable v (of k) at point i of the cosines c a kernel is given: c itself for v = 0,
+/// else c rotated by v·n/k, so that each variable sweeps the same values in another order.
+inline float variable_value(std::span<const float> c, std::size_t i, std::size_t v, std::size_t k) {
+  return c[(i + v * c.size() / k) % c.size()];
+}
+
+/// The input arrays of a kernel of several variables, made from the cosines it is called with
+/// (variable_value), kept while the same span comes again.
+class VariableInputs {
+ public:
+  explicit VariableInputs(std::size_t variables) : pointers_(variables) {}
+  const std::vector<const float*>& of(std::span<const float> c);
+
+ private:
+  const float* source_ = nullptr;
+  std::size_t size_ = 0;
+  std::vector<std::vector<float>> values_;
+  std::vector<const float*> pointers_;
 };
 
 /// The kernel's source: one function `specula_lobe_<i>` per lobe, and its vector operations
@@ -62,8 +85,9 @@ class NativeKernels {
   std::vector<int> operations_;
 };
 
-/// The largest |kernel − formula| over cosines spread on [0, 1] (the formula in double, with the
-/// lobe conventions: F = 0 for c ≤ 0, c clamped to 1): the check a kernel passes before it is timed.
+/// The largest |kernel − formula| over cosines spread on [0, 1] (each variable's values as
+/// variable_value gives them; the formula in double, with the lobe conventions: F = 0 where a
+/// variable is ≤ 0, each clamped to 1): the check a kernel passes before it is timed.
 double kernel_deviation(const cost::FloatKernel& kernel, const NativeLobe& lobe);
 
 }  // namespace specula::design

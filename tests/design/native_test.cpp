@@ -54,6 +54,26 @@ TEST_F(NativeTest, KernelsComputeTheirFormulas) {
   EXPECT_EQ(kernels.operations()[2], 2);  // FMA (n·c − n), exp
 }
 
+// Several per-pixel variables (issue 41): one input array each, the parameter a uniform; checked at
+// each variable's values as variable_value gives them (the cosines in other orders). The control:
+// the formula with NoV and NoL swapped in one place deviates.
+TEST_F(NativeTest, KernelsOfSeveralVariablesComputeTheirFormulas) {
+  const auto smith = [](const char* text) {
+    return NativeLobe{expr::parse(text, {"NoV", "NoL", "alpha"}), 0.4, 2};
+  };
+  const std::vector<NativeLobe> lobes = {
+      smith("2*NoV*NoL/(NoV*(NoL*(1 - alpha) + alpha) + NoL*(NoV*(1 - alpha) + alpha))"),
+      smith("2*NoV*NoL/(NoL*sqrt(NoV^2*(1 - alpha^2) + alpha^2) + NoV*sqrt(NoL^2*(1 - alpha^2) + alpha^2))"),
+      NativeLobe{expr::parse("x * y + z", {"x", "y", "z"}), 0, 3},
+  };
+  const NativeKernels kernels(lobes, dir_, [] { return false; });
+  for (std::size_t i = 0; i < lobes.size(); ++i)
+    EXPECT_LT(kernel_deviation(kernels.kernels()[i], lobes[i]), 2e-6) << expr::to_infix(lobes[i].formula);
+  const NativeLobe swapped = smith("2*NoV*NoL/(NoV*(NoV*(1 - alpha) + alpha) + NoL*(NoV*(1 - alpha) + alpha))");
+  EXPECT_GT(kernel_deviation(kernels.kernels()[0], swapped), 1e-3);
+  EXPECT_FALSE(std::isnan(cost::time_in_cache({kernels.kernels().begin(), 1}, cost::Settings::quick()).at(0)));
+}
+
 TEST_F(NativeTest, ADifferentFormulaDeviates) {  // the negative control of the check above
   const std::vector<NativeLobe> lobes = {lobe("c ^ 2")};
   const NativeKernels kernels(lobes, dir_, [] { return false; });
