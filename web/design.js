@@ -14,8 +14,8 @@ export function setupDesign(lobeModels, addModel) {
   const status = $('design-status'), body = document.querySelector('#design-front tbody');
   // Besides lobes, the engine terms (functions of c = cos θ, docs/designer.md): the server gives
   // their own parameter and range, so the page's are not sent for them.
-  const terms = Object.assign(document.createElement('optgroup'), {label: 'engine terms (functions of c)'});
-  terms.append(...['fresnel-dielectric', 'fresnel-conductor', 'schlick-weight'].map((id) => new Option(id, id)));
+  const terms = Object.assign(document.createElement('optgroup'), {label: 'engine terms (functions, GET /api/terms)'});
+  api('/api/terms').then((list) => terms.append(...list.map((t) => Object.assign(new Option(t.id, t.id), {title: t.summary}))));
   const lobes = Object.assign(document.createElement('optgroup'), {label: 'lobes'});
   lobes.append(...lobeModels.map((m) => new Option(m.id, m.id, m.id === 'phong', m.id === 'phong')));
   $('design-target').replaceChildren(lobes, terms);
@@ -46,7 +46,7 @@ export function setupDesign(lobeModels, addModel) {
     status.className = s.state === 'failed' ? 'error' : '';
     status.textContent = `job ${s.job}: ${s.state} · ${s.phase} ${s.done}/${s.total} · ${s.forms_screened} shapes screened` +
       ` · ${s.elapsed_s.toFixed(1)} s` + (s.final ? '' : ' · front so far on the cost model') + (s.error ? ` · ${s.error}` : '');
-    body.replaceChildren(...s.front.map(memberRow), ...s.references.map(memberRow));
+    body.replaceChildren(...s.front.map(memberRow), ...s.references.map(memberRow), ...(s.refused ?? []).map(memberRow));
     const timed = [...s.front, ...s.references].some((l) => l.ns_per_eval !== null && l.ns_per_eval !== undefined);
     const cost = (l) => (timed ? l.ns_per_eval : l.model_cost) ?? NaN;  // untimed references have no cost
     paretoPlot($('design-chart'), [...s.front, ...s.references].map((l) => ({

@@ -47,7 +47,8 @@ std::vector<Route> analysis_routes(const Limits& limits, Uploads& uploads) {
       {"/api/albedo", albedo_endpoint}, {"/api/check", check_endpoint}, {"/api/error", error_endpoint},
       {"/api/glsl", glsl_endpoint}, {"/api/sampling", sampling_endpoint},
       {"/api/hemisphere", hemisphere_endpoint}, {"/api/compensation", compensation_endpoint}};
-  std::vector<Route> routes{{"GET", "/api/models", [](const Request&) { return json(models_endpoint()); }}};
+  std::vector<Route> routes{{"GET", "/api/models", [](const Request&) { return json(models_endpoint()); }},
+                            {"GET", "/api/terms", [](const Request&) { return json(terms_endpoint()); }}};
   for (const auto& [path, endpoint] : endpoints)
     routes.push_back({"POST", path, [endpoint, &limits](const Request& r) { return json(endpoint(r.body, limits)); }, true});
   routes.push_back({"POST", kUploadObj, [&uploads](const Request& r) { return json(uploads.add_obj(r.body), 201); }, true});

@@ -79,7 +79,7 @@ struct DesignJob final : Job {
              {"k", number_or_null(l.k)},
              {"k_formula", l.k_formula},
              {"check", l.check}};
-    if (!l.reference) {
+    if (!l.reference && !design::is_function_target(result.settings.target)) {  // a lobe: a model card can take it
       out["definition"] = definition(design::member_model(result, l, false));
       out["definition_normalized"] = definition(design::member_model(result, l, true));
     }
@@ -105,7 +105,11 @@ struct DesignJob final : Job {
     out["references"] = Json::array();
     for (const auto& l : result.references) out["references"].push_back(lobe_json(l));
     out["refused"] = Json::array();
-    for (const auto& l : result.refused) out["refused"].push_back(lobe_json(l));
+    for (const auto& l : result.refused) {
+      Json refused = lobe_json(l);
+      refused["kind"] = "refused";  // off the front: its normalized twin fails check (its `check` says why)
+      out["refused"].push_back(std::move(refused));
+    }
     out["cost_note"] = result.cost_note;
     out["spirv_note"] = result.spirv_note;
   }

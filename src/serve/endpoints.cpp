@@ -11,6 +11,7 @@
 #include "specula/catalogue/model_meta.h"
 #include "specula/glsl/glsl.h"
 #include "specula/brdf/ggx.h"
+#include "specula/design/design.h"
 #include "specula/queries/compensation.h"
 #include "specula/queries/queries.h"
 #include "specula/render/scene.h"
@@ -36,6 +37,18 @@ std::size_t n_cap(queries::Condition condition, const Limits& limits) {
 }  // namespace
 
 std::string models_endpoint() { return queries::models_json(); }
+
+std::string terms_endpoint() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const design::Term& t : design::terms()) {
+    nlohmann::ordered_json references = nlohmann::ordered_json::array();
+    for (const design::TermReference& r : design::term_references())
+      if (r.term == t.id) references.push_back({{"id", r.id}, {"formula", r.formula}, {"source", r.source}});
+    out.push_back({{"id", t.id}, {"formula", t.formula}, {"variables", design::default_variables(t.id)},
+                   {"param", t.param}, {"range", {t.lo, t.hi}}, {"summary", t.summary}, {"references", references}});
+  }
+  return out.dump() + "\n";
+}
 
 std::string eval_endpoint(std::string_view body, const Limits& limits) {
   const Fields f(body, {"model", "params", "form", "coef", "cos", "lobe", "theta_i", "theta_o", "phi_o"});

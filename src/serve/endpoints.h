@@ -9,6 +9,9 @@
 namespace specula::serve {
 
 std::string models_endpoint();
+/// The designer's engine terms (design::terms()): id, formula, variables, param, range, summary
+/// and their reference rows (id, formula, source).
+std::string terms_endpoint();
 std::string eval_endpoint(std::string_view body, const Limits& limits);
 /// f at Rusinkiewicz's half/difference angles: theta_h × theta_d at phi_d (default 90°).
 std::string slice_endpoint(std::string_view body, const Limits& limits);
