@@ -1,8 +1,17 @@
-// The server's JSON API: GET without a body, POST with one; an error answer throws
+// The server's JSON API: GET without a body, POST with one (again while the server says it is
+// busy); an error answer throws
 // an Error whose message names the field ("n: …"), with the field and the reason apart too.
+// A busy server (every computing place taken: 503 with Retry-After) is asked again after the
+// seconds it names, a few times: the page sends several requests per view at once.
+const kRetries = 8;
+
 export async function api(path, body) {
   const init = body === undefined ? {} : {method: 'POST', headers: {'Content-Type': 'application/json'}, body: JSON.stringify(body)};
-  const response = await fetch(path, init);
+  let response = await fetch(path, init);
+  for (let retry = 0; retry < kRetries && response.status === 503 && response.headers.has('Retry-After'); ++retry) {
+    await new Promise((resolve) => setTimeout(resolve, 1000 * Number(response.headers.get('Retry-After') || 1)));
+    response = await fetch(path, init);
+  }
   const answer = await response.json();
   if (!response.ok)
     throw Object.assign(new Error(answer.field ? `${answer.field}: ${answer.error}` : answer.error), {field: answer.field, reason: answer.error});

@@ -18,7 +18,8 @@ function measured(model) {
 }
 
 /// The first catalogue model of `models` ({request, params, name}) the walk applies to, plotted into
-/// `container`; the caption says which model (or that none applies).
+/// `container`; the caption says which model (or that none applies, or why it could not be
+/// measured: an error here never stops the page's other views).
 export async function drawCompensation(models, container, caption, isCurrent) {
   const model = models.find((m) => /^ggx(-[a-z0-9]+)?(\+ms)?$/.test(m.name));
   if (!model) {
@@ -26,7 +27,13 @@ export async function drawCompensation(models, container, caption, isCurrent) {
     caption.textContent = 'no GGX model on the page: the random walk is GGX\'s';
     return;
   }
-  const t = await measured(model);
+  let t;
+  try {
+    t = await measured(model);
+  } catch (e) {  // the walk past the server's deadline (a loaded machine): said here, the other views go on
+    if (isCurrent()) caption.textContent = `${model.name}: the compensations could not be measured: ${e.message}`;
+    return;
+  }
   if (!isCurrent()) return;
   const mu = column(t, 'mu'), truth = t.rows.map((r) => r.E_F + r.E_ms);
   const names = t.compensations.split(',');

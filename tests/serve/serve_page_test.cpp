@@ -652,6 +652,18 @@ TEST_F(Page, TheEditorShowsTheServersErrorNextToTheFormula) {
   EXPECT_EQ(browser_->run("return document.getElementById('status').textContent;"), "ready");
 }
 
+// A busy server (one computing place: the page's parallel requests get 503 with Retry-After) is
+// asked again, and the page still gets to ready with every view drawn.
+TEST_F(Page, ABusyServerIsAskedAgainUntilThePageIsReady) {
+  Limits limits;
+  limits.max_busy_requests = 1;
+  limits.busy_wait_seconds = 0.05;
+  TestServer busy(limits);
+  browser_->go(fmt::format("http://127.0.0.1:{}/#state={}", busy.port(), percent_encoded(kState.dump())));
+  ASSERT_TRUE(wait_until_rendered(1)) << browser_->run("return document.getElementById('status').textContent;");
+  EXPECT_EQ(browser_->run("return document.querySelectorAll('#plot-lobe polyline').length;"), 2);
+}
+
 TEST_F(Page, FitsAPhoneWidthScreen) {
   browser_->session("POST", "/window/rect", {{"width", 390}, {"height", 844}});
   open(kState);
