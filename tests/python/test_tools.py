@@ -273,7 +273,7 @@ def test_design_is_the_clis(specula, tmp_path):
 
 def test_design_takes_an_engine_term_with_its_own_range(specula):
     # schlick-weight has no parameter: no range is given, and the engines' exp2 form is a reference row.
-    r = specula.design("schlick-weight", ops="fma,mul", max_cost=2, measure_cost=False, threads=1, time=30)
+    r = specula.design("schlick-weight", ops="fma,mul", max_cost=1, measure_cost=False, threads=1, time=30)
     ids = [l["id"] for l in r.references]
     assert ids == ["unreal-exp2", "exact"]
     assert abs(r.references[0]["max_abs"] - 0.00377) < 5e-5

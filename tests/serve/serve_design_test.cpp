@@ -80,7 +80,7 @@ TEST(ServeDesign, AJobShipsMembersThatLoadAsModels) {
 // are the engines' approximations and the term itself; a member's definition loads as a model.
 TEST(ServeDesign, AnEngineTermIsATargetWithItsEnginesReferences) {
   TestServer server;
-  const std::int64_t id = start_design(server.port(), {{"target", "schlick-weight"}, {"ops", "fma,mul"}, {"max_cost", 2},
+  const std::int64_t id = start_design(server.port(), {{"target", "schlick-weight"}, {"ops", "fma,mul"}, {"max_cost", 1},
                                                        {"time", 30}, {"timing", false}});
   const json status = finished(server.port(), id);
   ASSERT_EQ(status["state"], "done") << status.dump(2);
