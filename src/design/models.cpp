@@ -26,9 +26,7 @@ double timing_param(const Settings& s) {
 Model target_at(const Settings& s, double p) {
   ParamValues params = s.params;
   if (!s.param.empty()) params[s.param] = p;
-  // A function of c is evaluated as the lobe model of its formula (F at c ∈ (0, 1]).
-  const std::string model = is_function_target(s.target) ? "lobe: " + function_formula(s.target) : s.target;
-  Model m = make_model(model, params, s.form);
+  Model m = make_model(s.target, params, s.form);
   if (!m.is_lobe()) throw InvalidField("target", fmt::format("the target '{}' is not a lobe model", s.target));
   return m;
 }

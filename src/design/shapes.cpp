@@ -22,21 +22,18 @@ Node constant(double value) { return {Op::constant, 0, value}; }
 Node exact(int value) { return expr::exact_constant(value, 1, expr::Symbol::one); }
 Node op(Op o) { return {o, 0, 0}; }
 
-// The names shapes are printed with (their keys): the search's per-pixel variables.
-thread_local const std::vector<std::string>* key_names = nullptr;
-
-std::string key_of(const std::vector<Node>& nodes) {
+// The shape printed in the search's variables, every free constant as the same number: the
+// structure alone.
+std::string key_of(const std::vector<Node>& nodes, const std::vector<std::string>& variables) {
   std::vector<Node> printed = nodes;
-  // Every free constant prints as the same number, so the key is the structure alone.
   for (auto& n : printed)
     if (n.op == Op::constant && !expr::is_exact(n)) n.value = 7;
-  return expr::to_infix(expr::Expression(std::move(printed), *key_names));
+  return expr::to_infix(expr::Expression(std::move(printed), variables));
 }
 
 Shape leaf(std::uint32_t variable) {
   Shape s;
   s.nodes = {{Op::variable, variable, 0}};
-  s.key = key_of(s.nodes);
   s.nonnegative = true;
   return s;
 }
@@ -63,7 +60,6 @@ Shape unary(const Shape& x, Step step, int cost) {
   s.step = step;
   s.cost = x.cost + cost;
   s.nonnegative = step == Step::square || step == Step::clamp || step == Step::sqrt || step == Step::exp;
-  s.key = key_of(s.nodes);
   return s;
 }
 
@@ -76,7 +72,6 @@ Shape binary(const Shape& x, const Shape& y, Step step, int cost) {
   s.step = step;
   s.cost = x.cost + y.cost + cost;
   s.nonnegative = x.nonnegative && y.nonnegative;
-  s.key = key_of(s.nodes);
   return s;
 }
 
@@ -130,10 +125,6 @@ expr::Expression with_constants(const Shape& shape, std::span<const double> valu
 
 std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int max_cost, std::size_t limit,
                                     const std::function<bool()>& stop, const std::vector<std::string>& variables) {
-  key_names = &variables;
-  struct Reset {
-    ~Reset() { key_names = nullptr; }
-  } reset;
   const auto allowed = [&](Operation o) { return std::ranges::find(operations, o) != operations.end(); };
   // at_most[cost][k]: the indices into `all` of the shapes of that cost with at most k free
   // constants, in the order found. A binary step pairs x only with the y whose constants fit, so
@@ -148,7 +139,9 @@ std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int m
     return stopped || all.size() >= limit;
   };
   const auto add = [&](Shape s) {
-    if (full() || s.constants > kMaxShapeConstants || s.cost > max_cost || !seen.insert(s.key).second) return;
+    if (full() || s.constants > kMaxShapeConstants || s.cost > max_cost) return;
+    s.key = key_of(s.nodes, variables);
+    if (!seen.insert(s.key).second) return;
     for (int k = s.constants; k <= kMaxShapeConstants; ++k)
       at_most[static_cast<std::size_t>(s.cost)][static_cast<std::size_t>(k)].push_back(all.size());
     all.push_back(std::move(s));

@@ -227,8 +227,9 @@ double middle(double lo, double hi);
 /// holds it, else the range's middle.
 double timing_param(const Settings& s);
 
-/// The target lobe at value p of the range parameter, its other parameters the settings'.
-/// Throws InvalidField "target" if the model is not a lobe.
+/// A lobe target at value p of the range parameter, its other parameters the settings' (a
+/// function target is evaluated as an expression: function_expression). Throws InvalidField
+/// "target" if the model is not a lobe.
 Model target_at(const Settings& s, double p);
 /// The target's form: the settings', else the target model's own.
 Form target_form(const Settings& s);
