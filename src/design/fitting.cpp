@@ -74,9 +74,10 @@ double lobe_error(const expr::Expression& e, const fit::Data& data, const Settin
   for (const auto& c : data.columns) columns.emplace_back(c);
   std::vector<double> values(target.size());
   expr::evaluate_batch(e, columns, values);
+  const bool lobe = !is_function_target(s.target);  // a lobe is never negative; a function may dip below 0 as an error
   double worst = 0;
   for (std::size_t r = 0; r < values.size(); ++r) {
-    if (!std::isfinite(values[r]) || values[r] < 0) return INFINITY;
+    if (!std::isfinite(values[r]) || (lobe && values[r] < 0)) return INFINITY;
     const double d = std::abs(values[r] - target[r]);
     worst = std::max(worst, s.objective == Objective::max_rel ? d / target[r] : d);
   }
@@ -201,6 +202,63 @@ Samples samples_at(const Settings& s, double p) {
 
 double shape_error(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s) {
   return lobe_error(with_constants(shape, constants, s.variables), data_for(rows, {}, s.variables), s, rows.value);
+}
+
+namespace {
+
+// Every grid value's rows as one data set: the per-pixel variables, then the parameter.
+fit::Data joint_data(std::span<const Samples> grid, const Settings& s) {
+  fit::Data data;
+  data.variables = s.variables;
+  data.variables.push_back(s.param);
+  data.columns.resize(s.variables.size() + 1);
+  for (const Samples& g : grid) {
+    for (std::size_t v = 0; v < s.variables.size(); ++v) data.columns[v].insert(data.columns[v].end(), g.x[v].begin(), g.x[v].end());
+    data.columns.back().insert(data.columns.back().end(), g.value.size(), g.param);
+    data.target.insert(data.target.end(), g.value.begin(), g.value.end());
+  }
+  return data;
+}
+
+// Whether `lobe` is finite on the first grid value's rows at parameter values between and beyond
+// the grid's (a refit may move a law's pole into the range).
+bool finite_between(const expr::Expression& lobe, std::span<const Samples> grid, const Settings& s) {
+  constexpr std::size_t kDenseParams = 1025;
+  std::vector<std::vector<double>> columns = grid.front().x;
+  const std::size_t rows = grid.front().value.size();
+  columns.emplace_back(rows, 0.0);
+  for (double p : param_grid(s.lo, s.hi, kDenseParams)) {
+    std::ranges::fill(columns.back(), p);
+    for (double v : evaluate_rows(lobe, columns))
+      if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double expression_grid_error(const expr::Expression& lobe, std::span<const Samples> grid, const Settings& s) {
+  double worst = 0;
+  for (const Samples& g : grid) {
+    fit::Data data = data_for(g, {}, s.variables);
+    data.variables.push_back(s.param);
+    data.columns.emplace_back(g.value.size(), g.param);
+    worst = std::max(worst, lobe_error(lobe, data, s, g.value));
+  }
+  return std::isnan(worst) ? INFINITY : worst;
+}
+
+std::pair<expr::Expression, double> jointly_refitted(const expr::Expression& lobe, std::span<const Samples> grid,
+                                                     const Settings& s) {
+  const double before = expression_grid_error(lobe, grid, s);
+  if (free_values(lobe).empty()) return {lobe, before};
+  try {
+    const expr::Expression refitted = fit::fit_formula_constants(lobe, joint_data(grid, s), metric_of(s)).formula;
+    const double after = expression_grid_error(refitted, grid, s);
+    if (after < before && finite_between(refitted, grid, s)) return {refitted, after};
+  } catch (const InvalidArgument&) {  // more constants than a fit takes: the laws as they are
+  }
+  return {lobe, before};
 }
 
 GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,

@@ -45,11 +45,22 @@ struct GridFit {
 
 /// Fits `shape` at every grid value. `fixed` (same length as the grid, or empty) gives the
 /// values of the first fixed.size() constants at each grid value: those are held, the rest fitted.
-/// A fit whose lobe is negative or not finite somewhere on the rows counts as failed (inf).
+/// A fit not finite somewhere on the rows, or a lobe negative there, counts as failed (inf).
 GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
                       std::span<const std::vector<double>> fixed = {});
 
-/// The objective's error of `shape` with `constants` on the rows (inf where negative or not finite).
+/// The objective's error of `shape` with `constants` on the rows (inf where not finite, or where a
+/// lobe is negative).
 double shape_error(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s);
+
+/// The objective's largest error on every grid value's rows of `lobe`, an expression in the
+/// per-pixel variables and then the range parameter (inf as shape_error).
+double expression_grid_error(const expr::Expression& lobe, std::span<const Samples> grid, const Settings& s);
+
+/// `lobe`'s plain constants (those of its laws) fitted together over the rows of every grid value
+/// for the objective, from the values it has: the laws, each fitted alone, miss together what a
+/// joint fit recovers. Returns the better of the two, with its grid error.
+std::pair<expr::Expression, double> jointly_refitted(const expr::Expression& lobe, std::span<const Samples> grid,
+                                                     const Settings& s);
 
 }  // namespace specula::design

@@ -41,6 +41,21 @@ double law_at(const expr::Expression& law, double p) {
   return expr::evaluate(law, x);
 }
 
+// Parameter values between and beyond the grid's, where a law must be finite too.
+constexpr std::size_t kDenseParams = 1025;
+
+// Whether `law` is finite over the whole range and stays near its fitted values: within their
+// span again beyond their smallest and largest (a pole between two grid values is neither).
+bool law_holds(const expr::Expression& law, std::span<const double> fitted, const Settings& s) {
+  const auto [lo, hi] = std::ranges::minmax(fitted);
+  const double margin = std::max(hi - lo, 1e-9 * std::max(std::abs(lo), std::abs(hi)));
+  for (double p : param_grid(s.lo, s.hi, kDenseParams)) {
+    const double v = law_at(law, p);
+    if (!(v >= lo - margin && v <= hi + margin)) return false;
+  }
+  return true;
+}
+
 double grid_error(const Shape& shape, std::span<const Samples> grid, const std::vector<std::vector<double>>& constants,
                   const Settings& s) {
   double worst = 0;
@@ -79,19 +94,42 @@ std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples>
   std::vector<std::vector<double>> constants = fitted.constants;
   std::vector<expr::Expression> laws;
   const auto constant_count = static_cast<std::size_t>(shape.constants);
+  const double optimum = grid_error(shape, grid, constants, s);
+  const double within = optimum * (1 + kLawSlack);
+  // The constants after k refitted per value with 0 … k held at `values`.
+  const auto refit_after = [&](std::size_t k, const std::vector<std::vector<double>>& values) {
+    std::vector<std::vector<double>> held;
+    for (const auto& c : values) held.emplace_back(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k + 1));
+    return k + 1 < constant_count ? fit_over_grid(shape, grid, s, held).constants : values;
+  };
   for (std::size_t k = 0; k < constant_count; ++k) {
     if (stop()) return std::nullopt;
+    // A constant the others make up for (a scale that a later affine step repeats) is held at one
+    // value, its median, when the others refitted keep the lobe within the slack: its values over
+    // the grid wander between equally good fits, which no small law follows.
+    std::vector<double> column;
+    for (const auto& c : constants) column.push_back(c[k]);
+    std::ranges::nth_element(column, column.begin() + static_cast<std::ptrdiff_t>(column.size() / 2));
+    const double median = column[column.size() / 2];
+    auto one_value = constants;
+    for (auto& c : one_value) c[k] = median;
+    one_value = refit_after(k, one_value);
+    if (std::isfinite(median) && grid_error(shape, grid, one_value, s) <= within) {
+      laws.push_back(expr::Expression({{Op::constant, 0, median}}, {s.param}));
+      constants = std::move(one_value);
+      continue;
+    }
     fit::Data data{{s.param}, {params}, {}};
     for (const auto& c : constants) data.target.push_back(c[k]);
     const fit::Result found = fit::search(data, law_options(s));
     if (found.stopped_by == fit::StopReason::cancelled) return std::nullopt;
     // The first formula (smallest) whose lobe is within the slack of the per-value optimum, else
     // the most accurate one.
-    const double within = grid_error(shape, grid, constants, s) * (1 + kLawSlack);
     std::optional<expr::Expression> chosen;
     std::vector<std::vector<double>> chosen_constants;
     double chosen_error = INFINITY;
     for (const auto& candidate : found.front) {
+      if (!law_holds(candidate.formula, data.target, s)) continue;
       auto trial = constants;
       for (std::size_t i = 0; i < grid.size(); ++i) trial[i][k] = law_at(candidate.formula, params[i]);
       const double error = grid_error(shape, grid, trial, s);
@@ -104,14 +142,10 @@ std::optional<Lawful> constant_laws(const Shape& shape, std::span<const Samples>
     }
     if (!chosen) return std::nullopt;
     laws.push_back(*chosen);
-    // The constants after k refitted per value with 0 … k held.
-    std::vector<std::vector<double>> held;
-    for (const auto& c : chosen_constants) held.emplace_back(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k + 1));
-    if (k + 1 < constant_count) constants = fit_over_grid(shape, grid, s, held).constants;
-    else constants = std::move(chosen_constants);
+    constants = refit_after(k, chosen_constants);
   }
-  Lawful out{substitute_laws(shape, laws, s.variables, s.param), grid_error(shape, grid, constants, s)};
-  return out;
+  auto [lobe, error] = jointly_refitted(substitute_laws(shape, laws, s.variables, s.param), grid, s);
+  return Lawful{std::move(lobe), error};
 }
 
 }  // namespace specula::design

@@ -1,5 +1,7 @@
 #include "native.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -36,6 +38,14 @@ std::string literal(double v) {
   std::string text = fmt::format("{:.17g}", v);
   if (text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
+}
+
+// Whether a uniform's text names the parameter p (a word of its own: not the p of std::pow).
+bool reads_param(std::string_view text) {
+  const auto word = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':'; };
+  for (std::size_t i = text.find('p'); i != std::string_view::npos; i = text.find('p', i + 1))
+    if ((i == 0 || !word(text[i - 1])) && (i + 1 == text.size() || !word(text[i + 1]))) return true;
+  return false;
 }
 
 std::string scalar_call(Op op, const std::string& a) {
@@ -90,13 +100,12 @@ class Writer {
     Value result = stack.back();
     if (result.uniform) result.text = vector_of(result);
     if (variables_ > 1) return several_variables(result.text);
-    std::string out = fmt::format(
-        "extern \"C\" void specula_lobe_{}(const float* c, float* out, std::size_t count, double p) {{\n"
+    std::string out = uniforms_function() + fmt::format(
+        "extern \"C\" void specula_lobe_{}(const float* c, float* out, std::size_t count, const float* u) {{\n"
         "  const hn::ScalableTag<float> d;\n"
         "  const auto zero = hn::Zero(d);\n"
         "  const auto one = hn::Set(d, 1.0f);\n",
-        index_);
-    for (const auto& u : uniforms_) out += "  " + u + "\n";
+        index_) + uniform_loads();
     out += fmt::format(
         "  const auto lobe = [&](hn::Vec<decltype(d)> c_lanes) {{\n"
         "    const auto x = hn::Min(c_lanes, one);\n"
@@ -111,18 +120,34 @@ class Writer {
         "    hn::Store(lobe(hn::Load(d, in)), d, result);\n"
         "    for (std::size_t k = i; k < count; ++k) out[k] = result[k - i];\n"
         "  }}\n"
-        "  (void)p;\n"
+        "  (void)u;\n"
         "}}\n",
         result.text);
     return out;
   }
 
  private:
+  // A uniform as lanes: a number the compiler sees (folded, and the same number shared), or one
+  // of the material's uniforms (each distinct text once).
   std::string vector_of(const Value& v) {
     if (!v.uniform) return v.text;
-    const std::string name = fmt::format("u{}", uniforms_.size());
-    uniforms_.push_back(fmt::format("const auto {} = hn::Set(d, static_cast<float>({}));", name, v.text));
-    return name;
+    if (!reads_param(v.text)) return fmt::format("hn::Set(d, static_cast<float>({}))", v.text);
+    const auto found = std::ranges::find(uniforms_, v.text);
+    if (found != uniforms_.end()) return fmt::format("u{}", found - uniforms_.begin());
+    uniforms_.push_back(v.text);
+    return fmt::format("u{}", uniforms_.size() - 1);
+  }
+
+  // The uniforms' function, run once per material (not timed), and their loads at the kernel's top.
+  std::string uniforms_function() const {
+    std::string out = fmt::format("extern \"C\" void specula_uniforms_{}(double p, float* u) {{\n", index_);
+    for (std::size_t j = 0; j < uniforms_.size(); ++j) out += fmt::format("  u[{}] = static_cast<float>({});\n", j, uniforms_[j]);
+    return out + "  (void)p;\n  (void)u;\n}\n";
+  }
+  std::string uniform_loads() const {
+    std::string out;
+    for (std::size_t j = 0; j < uniforms_.size(); ++j) out += fmt::format("  const auto u{} = hn::Set(d, u[{}]);\n", j, j);
+    return out;
   }
 
   Value vector(std::string text) {
@@ -197,13 +222,12 @@ class Writer {
   // A function of several per-pixel variables: one input array each (in[v]), each clamped to 1
   // and the value 0 where one is ≤ 0, as for one variable.
   std::string several_variables(const std::string& result) {
-    std::string out = fmt::format(
-        "extern \"C\" void specula_lobe_{}(const float* const* in, float* out, std::size_t count, double p) {{\n"
+    std::string out = uniforms_function() + fmt::format(
+        "extern \"C\" void specula_lobe_{}(const float* const* in, float* out, std::size_t count, const float* u) {{\n"
         "  const hn::ScalableTag<float> d;\n"
         "  const auto zero = hn::Zero(d);\n"
         "  const auto one = hn::Set(d, 1.0f);\n",
-        index_);
-    for (const auto& u : uniforms_) out += "  " + u + "\n";
+        index_) + uniform_loads();
     std::string parameters, clamps, outside;
     for (std::size_t v = 0; v < variables_; ++v) {
       parameters += fmt::format("{}hn::Vec<decltype(d)> v{}", v ? ", " : "", v);
@@ -229,7 +253,7 @@ class Writer {
         "    hn::Store(lobe({}), d, result);\n"
         "    for (std::size_t k = i; k < count; ++k) out[k] = result[k - i];\n"
         "  }}\n"
-        "  (void)p;\n"
+        "  (void)u;\n"
         "}}\n",
         parameters, clamps, outside, result, loads, variables_, tail_fill, tail_loads);
     return out;
@@ -237,6 +261,9 @@ class Writer {
 
   std::size_t index_, variables_;
   int operations_ = 0;
+ public:
+  std::size_t uniform_count() const { return uniforms_.size(); }
+ private:
   std::vector<std::string> uniforms_;
 };
 
@@ -251,8 +278,10 @@ NativeSource native_source(const std::vector<NativeLobe>& lobes) {
       "namespace hn = hwy::HWY_NAMESPACE;\n\n";
   for (std::size_t i = 0; i < lobes.size(); ++i) {
     int operations = 0;
-    out.text += Writer(i, lobes[i].variables).function(lobes[i].formula, operations) + "\n";
+    Writer writer(i, lobes[i].variables);
+    out.text += writer.function(lobes[i].formula, operations) + "\n";
     out.operations.push_back(operations);
+    out.uniforms.push_back(writer.uniform_count());
   }
   return out;
 }
@@ -296,22 +325,27 @@ NativeKernels::NativeKernels(const std::vector<NativeLobe>& lobes, const std::fi
   if (status != 0) throw std::runtime_error(fmt::format("compiling the kernels failed: {}", first_error(log)));
   library_ = dlopen(so.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!library_) throw std::runtime_error(fmt::format("loading the kernels failed: {}", dlerror()));
-  using Function = void (*)(const float*, float*, std::size_t, double);
-  using Several = void (*)(const float* const*, float*, std::size_t, double);
+  using Uniforms = void (*)(double, float*);
+  using Function = void (*)(const float*, float*, std::size_t, const float*);
+  using Several = void (*)(const float* const*, float*, std::size_t, const float*);
   for (std::size_t i = 0; i < lobes.size(); ++i) {
     void* symbol = dlsym(library_, fmt::format("specula_lobe_{}", i).c_str());
-    if (!symbol) throw std::runtime_error("a kernel is missing from the compiled library");
+    void* uniforms_symbol = dlsym(library_, fmt::format("specula_uniforms_{}", i).c_str());
+    if (!symbol || !uniforms_symbol) throw std::runtime_error("a kernel is missing from the compiled library");
+    // The per-material constants, once (a renderer's uniforms): the timed work is per pixel only.
+    auto uniforms = std::make_shared<std::vector<float>>(std::max<std::size_t>(source.uniforms[i], 1));
+    reinterpret_cast<Uniforms>(uniforms_symbol)(lobes[i].param, uniforms->data());
     if (lobes[i].variables == 1) {
-      kernels_.push_back([f = reinterpret_cast<Function>(symbol), p = lobes[i].param](std::span<const float> c, std::span<float> out) {
-        f(c.data(), out.data(), std::min(c.size(), out.size()), p);
+      kernels_.push_back([f = reinterpret_cast<Function>(symbol), uniforms](std::span<const float> c, std::span<float> out) {
+        f(c.data(), out.data(), std::min(c.size(), out.size()), uniforms->data());
       });
       continue;
     }
     // The other variables' inputs are made from the cosines once per span (the harness calls the
     // kernel again and again on the same one): the timed work is the kernel's alone.
     auto inputs = std::make_shared<VariableInputs>(lobes[i].variables);
-    kernels_.push_back([f = reinterpret_cast<Several>(symbol), p = lobes[i].param, inputs](std::span<const float> c, std::span<float> out) {
-      f(inputs->of(c).data(), out.data(), std::min(c.size(), out.size()), p);
+    kernels_.push_back([f = reinterpret_cast<Several>(symbol), uniforms, inputs](std::span<const float> c, std::span<float> out) {
+      f(inputs->of(c).data(), out.data(), std::min(c.size(), out.size()), uniforms->data());
     });
   }
   operations_ = source.operations;

@@ -1,9 +1,10 @@
 #pragma once
 // Lobes timed as native code: each lobe's formula written out as a Highway kernel in float lanes
 // (one vector operation per formula operation, a·x + b fused into one FMA, the parameter's
-// subexpressions computed once per call as a shader's uniforms are), compiled at run time by the
-// compiler that built specula into a shared object, loaded, checked against the formula, and
-// timed in the benchmark's harness (cost::time_in_cache) beside the built-in lobes' kernels.
+// subexpressions computed once per material as a shader's uniforms are, outside the timing),
+// compiled at run time by the compiler that built specula into a shared object, loaded, checked
+// against the formula, and timed in the benchmark's harness (cost::time_in_cache) beside the
+// built-in lobes' kernels.
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -45,11 +46,14 @@ class VariableInputs {
   std::vector<const float*> pointers_;
 };
 
-/// The kernel's source: one function `specula_lobe_<i>` per lobe, and its vector operations
-/// per value (FMA, a transcendental function, a division: one each).
+/// The kernel's source: per lobe, `specula_uniforms_<i>(p, u)` writing the constants that depend
+/// on the parameter alone (a material's uniforms, computed once and not timed) and the kernel
+/// `specula_lobe_<i>` reading them; its vector operations per value (FMA, a transcendental
+/// function, a division: one each), and its count of uniforms.
 struct NativeSource {
   std::string text;
   std::vector<int> operations;
+  std::vector<std::size_t> uniforms;
 };
 NativeSource native_source(const std::vector<NativeLobe>& lobes);
 

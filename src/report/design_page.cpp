@@ -1,5 +1,6 @@
 #include "specula/report/design_page.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -40,6 +41,43 @@ std::vector<double> curve_params(const design::Settings& s) { return {s.lo, desi
 
 std::string member_glsl(const design::Result& r, const design::Lobe& l) {
   return glsl::model_glsl(design::lobe_at(l, r.settings)(design::timing_param(r.settings)));
+}
+
+// A function member as a GLSL function of the per-pixel variables and the range parameter.
+std::string function_glsl(const design::Result& r, const design::Lobe& l) {
+  std::string arguments;
+  for (const auto& name : design::formula_variables(r.settings))
+    arguments += (arguments.empty() ? "float " : ", float ") + name;
+  return fmt::format("float specula_term({}) {{\n  return {};\n}}\n", arguments,
+                     expr::to_glsl(design::function_expression(r.settings, l.formula)));
+}
+
+// |F − target| of a function member against its first variable at parameter value p, the largest
+// over a grid of the other variables (each over (0, 1]).
+std::vector<double> function_error_curve(const design::Result& r, const design::Lobe& member, double p,
+                                         const std::vector<double>& first) {
+  const design::Settings& s = r.settings;
+  const expr::Expression f = design::function_expression(s, member.formula), t = design::function_expression(s);
+  constexpr int kOthers = 32;
+  const std::size_t others = s.variables.size() - 1;
+  std::size_t combinations = 1;
+  for (std::size_t i = 0; i < others; ++i) combinations *= kOthers;
+  std::vector<double> out;
+  std::vector<double> point(design::formula_variables(s).size());
+  if (!s.param.empty()) point.back() = p;
+  for (double x : first) {
+    point[0] = x;
+    double worst = 0;
+    for (std::size_t j = 0; j < combinations; ++j) {
+      for (std::size_t i = 0, rest = j; i < others; ++i, rest /= kOthers)
+        point[i + 1] = static_cast<double>(rest % kOthers + 1) / kOthers;
+      const double e = std::abs(expr::evaluate(f, point) - expr::evaluate(t, point));
+      worst = std::isnan(e) ? e : std::max(worst, e);
+      if (std::isnan(worst)) break;
+    }
+    out.push_back(worst);
+  }
+  return out;
 }
 
 }  // namespace
@@ -91,21 +129,27 @@ Chart design_front_chart(const design::Result& r) {
 
 Chart design_error_chart(const design::Result& r, const design::Lobe& member) {
   const design::Settings& s = r.settings;
+  const bool function = design::is_function_target(s.target);
+  const std::string& first = s.variables.front();
   Chart chart;
-  chart.title = fmt::format("{}: |F − {}| against c", member.id, s.target);
-  chart.x = {"c", Scale::linear, 0.0, 1.0};
+  chart.title = fmt::format("{}: |F − {}| against {}{}", member.id, s.target, first,
+                            s.variables.size() > 1 ? " (the largest over the other variables)" : "");
+  chart.x = {first, Scale::linear, 0.0, 1.0};
   chart.y = {"|F − target|", Scale::linear, 0.0, {}};
   const char* colours[] = {"#0072B2", "#D55E00", "#009E73"};
   std::size_t k = 0;
-  const auto member_at = design::lobe_at(member, s);
-  for (double p : curve_params(s)) {
-    const auto f = curve(member_at(p));
-    const auto t = curve(design::target_at(s, p));
-    Series series{fmt::format("{} = {:g}", s.param, p), colours[k++ % 3], {}, {}, Stroke::solid, false, {}};
-    for (int i = 0; i <= 400; ++i) {
-      const double c = std::pow(i / 400.0, 0.25);  // denser near 1, where narrow lobes live
-      series.x.push_back(c);
-      series.y.push_back(std::abs(f(c) - t(c)));
+  std::vector<double> xs;
+  for (int i = function ? 1 : 0; i <= 400; ++i)  // a lobe's c denser near 1, where narrow lobes live; a function's even
+    xs.push_back(function ? i / 400.0 : std::pow(i / 400.0, 0.25));
+  for (double p : s.param.empty() ? std::vector<double>{s.lo} : curve_params(s)) {
+    Series series{s.param.empty() ? std::string("|F − target|") : fmt::format("{} = {:g}", s.param, p), colours[k++ % 3], xs,
+                  {}, Stroke::solid, false, {}};
+    if (function) {
+      series.y = function_error_curve(r, member, p, xs);
+    } else {
+      const auto f = curve(design::lobe_at(member, s)(p));
+      const auto t = curve(design::target_at(s, p));
+      for (double c : xs) series.y.push_back(std::abs(f(c) - t(c)));
     }
     chart.series.push_back(std::move(series));
   }
@@ -114,6 +158,21 @@ Chart design_error_chart(const design::Result& r, const design::Lobe& member) {
   chart.height = 320;
   return chart;
 }
+
+namespace {
+
+std::string function_member(const design::Result& r, const design::Lobe& l) {
+  const design::Settings& s = r.settings;
+  const std::string where = s.param.empty() ? std::string()
+                                            : fmt::format(", {} = {}", xml_escape(s.param), show(l.argmax_param, 6));
+  return fmt::format("<h2 id=\"{0}\">{0}</h2>\n<p><code>F = {1}</code></p>\n<p>Largest |F − {2}| = {3} at {4} = {5}{6}.</p>\n"
+                     "<figure>{7}</figure>\n<details><summary>GLSL</summary><pre>{8}</pre></details>\n",
+                     xml_escape(l.id), xml_escape(l.formula), xml_escape(s.target), show(l.max_abs, 6),
+                     xml_escape(s.variables.front()), show(l.argmax_c, 6), where, error_figure(r, l),
+                     xml_escape(function_glsl(r, l)));
+}
+
+}  // namespace
 
 std::string design_page(const design::Result& r) {
   const design::Settings& s = r.settings;
@@ -128,6 +187,10 @@ std::string design_page(const design::Result& r) {
   for (const auto& l : r.references) row(l);
   std::string members;
   for (const auto& l : r.front) {
+    if (design::is_function_target(s.target)) {
+      members += function_member(r, l);
+      continue;
+    }
     members += fmt::format(
         "<h2 id=\"{0}\">{0}</h2>\n<p><code>F = {1}</code></p>\n<p>Largest |F − {2}| = {3} at c = {4}, {5} = {6}; "
         "largest relative error where {2} ≥ {7}: {8}. Normalized: k({5} = {9}) = {10} {15} (the model "

@@ -264,3 +264,19 @@ TEST_F(Cli, DesignRefusesBadSettingsInOneLineWritingNothing) {
   EXPECT_TRUE(fs::exists(out / "front.csv"));
   EXPECT_TRUE(fs::exists(out / "models.toml"));
 }
+
+// ---- design: a function target's front is written with its page --------------------------------
+
+// The page of a function target plots |F − target| against its first variable, the largest over
+// the others, and shows each member's GLSL function (a function is not a lobe: no lobe model is
+// made of it). Cost 1, no timing: about 3 s under the sanitizers.
+TEST_F(Cli, DesignWritesTheFrontAndPageOfFunctionTargets) {
+  for (const std::string target : {"smith-g2-ggx", "schlick-weight"}) {
+    const fs::path out = work() / target;
+    const Result r = run({"design", "--target", target, "--max-cost", "1", "-q", "--no-timing", "--out", out.string()});
+    ASSERT_EQ(r.code, 0) << r;
+    const std::string page = specula::testing::read_file(out / "index.html");
+    EXPECT_THAT(page, HasSubstr("float specula_term(")) << target;
+    EXPECT_THAT(page, HasSubstr(target == "smith-g2-ggx" ? "against NoV (the largest over the other variables)" : "against c"));
+  }
+}

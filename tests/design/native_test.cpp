@@ -54,6 +54,23 @@ TEST_F(NativeTest, KernelsComputeTheirFormulas) {
   EXPECT_EQ(kernels.operations()[2], 2);  // FMA (n·c − n), exp
 }
 
+// The parameter's subexpressions are a material's uniforms: written into specula_uniforms_<i>, run
+// once per material, never into the timed kernel; each distinct one once, and plain numbers stay
+// numbers the compiler folds and shares (the exact Fresnel repeats its square roots: loaded as
+// uniforms, they cost 2.5 times as much).
+TEST_F(NativeTest, TheParametersSubexpressionsAreComputedOnceOutsideTheKernel) {
+  const NativeSource source = native_source({lobe("c * log(log(n) + 2) + log(log(n) + 2) * c ^ 2 + 0.5 * c")});
+  const auto kernel = source.text.find("specula_lobe_0");
+  ASSERT_NE(kernel, std::string::npos);
+  EXPECT_NE(source.text.find("std::log"), std::string::npos);
+  EXPECT_LT(source.text.find("std::log"), kernel);  // in the uniforms' function, before the kernel
+  EXPECT_EQ(source.text.find("std::log", kernel), std::string::npos);
+  EXPECT_EQ(source.uniforms.at(0), 1u);  // log(log(n) + 2) once; 0.5 a number
+  EXPECT_EQ(native_source({lobe("c * 0.5 + 0.25")}).uniforms.at(0), 0u);  // the control: no parameter, no uniform
+  const NativeKernels kernels({lobe("c * log(log(n) + 2) + log(log(n) + 2) * c ^ 2 + 0.5 * c", 3)}, dir_, [] { return false; });
+  EXPECT_LT(kernel_deviation(kernels.kernels()[0], lobe("c * log(log(n) + 2) + log(log(n) + 2) * c ^ 2 + 0.5 * c", 3)), 2e-6);
+}
+
 // Several per-pixel variables (issue 41): one input array each, the parameter a uniform; checked at
 // each variable's values as variable_value gives them (the cosines in other orders). The control:
 // the formula with NoV and NoL swapped in one place deviates.
