@@ -120,7 +120,8 @@ void run(const DesignOptions& o) {
   report::write_design_pictures(result, staged.path());
   staged.commit();
   std::cout << design::front_table(result)
-            << fmt::format("{} of {} shapes screened in {:.1f} s{}; {}\n", result.forms_screened, result.forms_total, result.seconds,
+            << fmt::format("{} of {} shapes screened in {:.1f} s ({} computed what a cheaper shape computes){}; {}\n",
+                           result.forms_screened, result.forms_total, result.seconds, result.forms_same,
                            result.cancelled ? " (stopped)" : "", result.cost_note);
   if (signal != 0) {
     request_stop(signal);

@@ -187,6 +187,7 @@ py::dict design_run(const py::dict& kwargs) {
   out["json"] = design::design_json(r);
   out["forms_screened"] = r.forms_screened;
   out["forms_total"] = r.forms_total;
+  out["forms_same"] = r.forms_same;
   out["seconds"] = r.seconds;
   out["cancelled"] = r.cancelled;
   out["cost_note"] = r.cost_note;

@@ -613,8 +613,14 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
     if (static_cast<int>(i % static_cast<std::size_t>(s.shards)) == s.shard) mine.push_back(i);
   result.forms_total = static_cast<std::int64_t>(mine.size());
   tell("screening shapes", 0, result.forms_total, nullptr);
-  const std::vector<Samples> screen = samples_over(s, kScreenGrid);
+  // The range's middle first: the shapes are told apart there, where a range's end (n = 1, where
+  // cⁿ is c) makes many the same.
+  std::vector<Samples> screen = samples_over(s, kScreenGrid);
+  const auto middle_value = screen.begin() + static_cast<std::ptrdiff_t>(screen.size() / 2);
+  std::rotate(screen.begin(), middle_value, middle_value + 1);
+  const std::span<const Samples> first_value(screen.data(), 1);
   std::vector<Screened> screened;
+  std::unordered_set<std::string> computed;  // value_signature of every shape kept so far
   for (std::size_t first = 0; first < mine.size(); first += kChunk) {
     if (stopper.cancelled() || stopper.out_of_time()) {
       result.cancelled = stopper.cancelled();
@@ -622,15 +628,33 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
     }
     const std::size_t last = std::min(mine.size(), first + kChunk);
     std::vector<Screened> chunk(last - first);
-    arena.execute([&] {
-      tbb::parallel_for(first, last, [&](std::size_t i) {
-        if (!stop()) chunk[i - first] = {mine[i], fit_over_grid(all[mine[i]], screen, s)};  // a stop ends it at once
+    std::vector<std::string> signatures(last - first);
+    // Each shape at the range's middle; one that computes what a cheaper shape computes there
+    // (the same signature, decided in the shapes' order: the same for any thread count) goes no
+    // further; the others go on over the rest of the screening grid.
+    const auto each = [&](auto work) {
+      arena.execute([&] {
+        tbb::parallel_for(first, last, [&](std::size_t i) {
+          if (!stop()) work(i - first, all[mine[i]]);  // a stop ends it at once
+        });
       });
+    };
+    each([&](std::size_t j, const Shape& shape) {
+      chunk[j] = {mine[first + j], fit_over_grid(shape, first_value, s)};
+      if (chunk[j].fit.ok()) signatures[j] = value_signature(shape, chunk[j].fit.constants[0], screen[0], s);
+    });
+    std::vector<bool> same(last - first);
+    for (std::size_t j = 0; j < chunk.size(); ++j)
+      same[j] = !stop() && chunk[j].fit.ok() && !computed.insert(signatures[j]).second;
+    each([&](std::size_t j, const Shape& shape) {
+      if (same[j]) chunk[j].fit.worst = INFINITY;
+      else if (chunk[j].fit.ok()) chunk[j].fit = fit_over_grid(shape, screen, s, {}, &chunk[j].fit);
     });
     if (stop()) {
       result.cancelled = true;
       break;
     }
+    result.forms_same += std::ranges::count(same, true);
     screened.insert(screened.end(), chunk.begin(), chunk.end());
     result.forms_screened = static_cast<std::int64_t>(screened.size());
     tell("screening shapes", result.forms_screened, static_cast<std::int64_t>(mine.size()), nullptr);
@@ -703,6 +727,7 @@ Result merge(const std::vector<Result>& shards, const MergeOptions& options,
     const Result& r = shards[i];
     result.forms_screened += r.forms_screened;
     result.forms_total += r.forms_total;
+    result.forms_same += r.forms_same;
     result.cancelled |= r.cancelled;
     for (std::size_t j = 0; j < r.front.size(); ++j)
       if (formulas.insert(r.front[j].formula).second)

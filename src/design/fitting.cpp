@@ -261,14 +261,28 @@ std::pair<expr::Expression, double> jointly_refitted(const expr::Expression& lob
   return {lobe, before};
 }
 
+std::string value_signature(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s) {
+  const expr::Expression e = with_constants(shape, constants, s.variables);
+  std::vector<double> point(s.variables.size());
+  std::string out;
+  for (std::size_t r = 0; r < rows.value.size(); r += 8) {
+    for (std::size_t v = 0; v < point.size(); ++v) point[v] = rows.x[v][r];
+    out += fmt::format("{:.6g},", expr::evaluate(e, point));
+  }
+  return out;
+}
+
 GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
-                      std::span<const std::vector<double>> fixed) {
-  GridFit out;
+                      std::span<const std::vector<double>> fixed, const GridFit* started) {
+  GridFit out = started ? *started : GridFit{};
   const auto fixed_at = [&](std::size_t i) { return fixed.empty() ? std::span<const double>() : std::span<const double>(fixed[i]); };
   std::mt19937_64 rng(s.seed ^ std::hash<std::string>{}(shape.key));
   const std::vector<double> identity = free_values(shape.expression(s.variables));  // every a·x + b at a = 1, b = 0
   std::vector<double> previous;  // the free constants of the last grid value
-  for (std::size_t i = 0; i < grid.size(); ++i) {
+  const std::size_t first = out.constants.size();
+  if (first > 0) previous.assign(out.constants.back().begin() + static_cast<std::ptrdiff_t>(fixed_at(first - 1).size()),
+                                 out.constants.back().end());
+  for (std::size_t i = first; i < grid.size(); ++i) {
     const std::size_t held = fixed_at(i).size();
     const std::vector<double> identity_free(identity.begin() + static_cast<std::ptrdiff_t>(held), identity.end());
     std::vector<std::vector<double>> starts{identity_free};

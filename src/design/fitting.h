@@ -46,8 +46,15 @@ struct GridFit {
 /// Fits `shape` at every grid value. `fixed` (same length as the grid, or empty) gives the
 /// values of the first fixed.size() constants at each grid value: those are held, the rest fitted.
 /// A fit not finite somewhere on the rows, or a lobe negative there, counts as failed (inf).
+/// `started`, if given, holds the fits of the grid's first values (as from the same call on a
+/// prefix of the grid): they are kept, and the fits go on from the next value.
 GridFit fit_over_grid(const Shape& shape, std::span<const Samples> grid, const Settings& s,
-                      std::span<const std::vector<double>> fixed = {});
+                      std::span<const std::vector<double>> fixed = {}, const GridFit* started = nullptr);
+
+/// What a fitted shape computes, as text: its values on every 8th row of `rows`, to 6 significant
+/// digits. Two shapes of the same signature compute the same function there (one family written
+/// two ways, or two families that meet at their best fit): the search keeps the cheaper.
+std::string value_signature(const Shape& shape, std::span<const double> constants, const Samples& rows, const Settings& s);
 
 /// The objective's error of `shape` with `constants` on the rows (inf where not finite, or where a
 /// lobe is negative).

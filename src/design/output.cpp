@@ -81,6 +81,9 @@ class DesignReader {
     r.forms_screened = count(j, "forms_screened");
     if (r.forms_screened > r.forms_total)
       fail("'forms_screened'", fmt::format("({}) is more than 'forms_total' ({})", r.forms_screened, r.forms_total));
+    r.forms_same = j.contains("forms_same") ? count(j, "forms_same") : 0;  // absent from earlier files
+    if (r.forms_same > r.forms_screened)
+      fail("'forms_same'", fmt::format("({}) is more than 'forms_screened' ({})", r.forms_same, r.forms_screened));
     r.cancelled = flag(j, "stopped");
     const Json& members = value(j, "", "members");
     if (!members.is_array()) fail("'members'", "must be an array");
@@ -315,7 +318,7 @@ std::string design_json(const Result& result) {
                    {"param", s.param}, {"lo", s.lo}, {"hi", s.hi}, {"objective", to_string(s.objective)},
                    {"zone", s.zone}, {"ops", ops}, {"max_cost", s.max_cost}, {"seed", s.seed},
                    {"shard", s.shard}, {"shards", s.shards}, {"forms_screened", result.forms_screened},
-                   {"forms_total", result.forms_total}, {"stopped", result.cancelled},
+                   {"forms_same", result.forms_same}, {"forms_total", result.forms_total}, {"stopped", result.cancelled},
                    {"members", nlohmann::json::array()}};
   for (const Lobe& l : result.front)
     j["members"].push_back({{"id", l.id}, {"formula", l.formula}, {"shape", l.shape}, {"max_abs", l.max_abs},

@@ -3,7 +3,7 @@
 // approximations the engines ship as the front's reference rows.
 #include <algorithm>
 #include <array>
-#include <regex>
+#include <cctype>
 #include <fmt/format.h>
 
 #include "specula/catalogue/catalogue.h"
@@ -91,9 +91,20 @@ std::vector<std::string> default_variables(std::string_view target) {
 }
 
 std::string with_values(std::string_view formula, const ParamValues& params) {
+  const auto word = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; };
   std::string out(formula);
-  for (const auto& [name, value] : params)
-    out = std::regex_replace(out, std::regex("\\b" + name + "\\b"), fmt::format("({})", value));
+  for (const auto& [name, value] : params) {
+    const std::string text = fmt::format("({})", value);
+    for (std::size_t at = out.find(name); at != std::string::npos; at = out.find(name, at)) {
+      const std::size_t end = at + name.size();
+      if ((at == 0 || !word(out[at - 1])) && (end == out.size() || !word(out[end]))) {
+        out.replace(at, name.size(), text);
+        at += text.size();
+      } else {
+        at = end;
+      }
+    }
+  }
   return out;
 }
 

@@ -100,6 +100,7 @@ struct DesignJob final : Job {
     out["final"] = final;
     out["forms_screened"] = result.forms_screened;
     out["forms_total"] = result.forms_total;
+    out["forms_same"] = result.forms_same;
     out["front"] = Json::array();
     for (const auto& l : result.front) out["front"].push_back(lobe_json(l));
     out["references"] = Json::array();

@@ -193,6 +193,27 @@ TEST(FunctionTargets, AMemberMayBeNegativeWhereALobeMayNot) {
   EXPECT_EQ(shape_error(line, at_minimax, samples_at(lobe, 2), lobe), INFINITY);  // the control: a lobe's
 }
 
+// Two ways of writing every quadratic in c compute the same best fit: the same signature, and
+// the search screens only the cheaper further. The control: c²·a + b, a quadratic without its
+// linear term, computes something else.
+TEST(FunctionTargets, ShapesThatComputeTheSameFunctionHaveOneSignature) {
+  Settings s = small("fresnel-dielectric");
+  const Samples rows = samples_at(s, 1.85);
+  const auto signature = [&](std::string_view key) {
+    const Shape shape = shape_named("fma,mul", 3, key);
+    const GridFit fit = fit_over_grid(shape, std::span<const Samples>(&rows, 1), s);
+    return value_signature(shape, fit.constants[0], rows, s);
+  };
+  EXPECT_EQ(signature("(c * 7 + 7) ^ 2 * 7 + 7"), signature("c * (c * 7 + 7) * 7 + 7"));
+  EXPECT_NE(signature("(c * 7 + 7) ^ 2 * 7 + 7"), signature("c ^ 2 * 7 + 7"));
+  Settings weight = small("schlick-weight");  // no parameter: no laws to find, a quick search
+  weight.max_cost = 3;
+  weight.operations = parse_operations("fma,mul");
+  const Result r = design(weight);
+  EXPECT_GT(r.forms_same, 0);
+  EXPECT_LT(r.forms_same, r.forms_screened);
+}
+
 TEST(FunctionTargets, BadTargetsAreRefusedInOneLine) {
   const auto refused = [](Settings s, const char* field, const char* what) {
     try {

@@ -178,6 +178,9 @@ struct Result {
   std::vector<Lobe> refused;
   std::int64_t forms_screened = 0;
   std::int64_t forms_total = 0;  ///< this shard's shapes within max_cost and max_forms
+  /// Of those screened, the shapes that computed at the range's middle what a cheaper shape of
+  /// this shard computed there (the same values on the rows): not screened further.
+  std::int64_t forms_same = 0;
   double seconds = 0;
   bool cancelled = false;
   std::string cost_note;         ///< how the costs were obtained (compiler, or why the model)
