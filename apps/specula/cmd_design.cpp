@@ -138,7 +138,7 @@ void add_design_command(CLI::App& app) {
                   "What to approximate: a lobe (an id, 'lobe: FORMULA' or a model file's id), a function of\n"
                   "c = cos θ in (0, 1] ('expr: FORMULA', e.g. 'expr: (1 - c)^5'), or an engine term:\n"
                   "fresnel-dielectric (eta), fresnel-conductor (eta; -p kappa=…), schlick-weight,\n"
-                  "smith-g2-ggx (NoV, NoL; alpha)")
+                  "smith-g2-ggx, smith-g2-beckmann (NoV, NoL; alpha)")
       ->capture_default_str();
   cmd->add_option("--param,-p", o->params, "The target's other parameters, NAME=VALUE (repeatable)");
   cmd->add_option("--form", o->form, "The target's form, rv or nh (default: its own)")->check(CLI::IsMember({"rv", "nh"}));
@@ -146,7 +146,7 @@ void add_design_command(CLI::App& app) {
                   "or the term's); every other name in its formula is a parameter");
   cmd->add_option("--range", o->range, "The parameter the lobes follow and its range, NAME=LO:HI (default: the target's:\n"
                   "n=1:1000 for a lobe, eta=1.2:2.5 for fresnel-dielectric, eta=0.1:3 for fresnel-conductor,\n"
-                  "alpha=0.05:1 for smith-g2-ggx,\n"
+                  "alpha=0.05:1 for smith-g2-ggx and smith-g2-beckmann,\n"
                   "none for a target without parameters)");
   cmd->add_option("--objective", o->objective, "max-abs: the largest |F − target|; max-rel: the largest relative error "
                   "where the target ≥ --zone; both: the two as objectives")

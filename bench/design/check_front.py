@@ -8,9 +8,12 @@ front.csv claims.
 
 The target (DIR/design.json) is computed without specula: phong as c^n, the engine terms from
 their textbook formulas (the exact dielectric and conductor Fresnel in Python's complex
-arithmetic, (1 - c)^5), an `expr:` target through SymPy (its own parameters from design.json).
-Other lobe targets are not supported. Prints one line per member (claimed, found on the grid,
-where) and exits 1 if a claim is low.
+arithmetic, (1 - c)^5, the height-correlated Smith G2 of GGX and of Beckmann, the latter's
+Lambda through Python's math.erfc), an `expr:` target through SymPy (its own parameters from
+design.json). Other lobe targets are not supported. A target of several per-pixel variables
+(NoV, NoL) has its members' formulas from front.csv evaluated here too, through NumPy,
+on a tensor grid of the variables (denser toward 0) at each parameter value. Prints one line per
+member (claimed, found on the grid, where) and exits 1 if a claim is low.
 """
 import argparse
 import cmath
@@ -36,6 +39,25 @@ def conductor(c, eta, kappa):
     rs = (c - n * cos_t) / (c + n * cos_t)
     rp = (n * c - cos_t) / (n * c + cos_t)
     return (abs(rs) ** 2 + abs(rp) ** 2) / 2
+
+
+def smith_g2_ggx(v, l, a):
+    return 2 * v * l / (l * math.sqrt(v * v * (1 - a * a) + a * a) + v * math.sqrt(l * l * (1 - a * a) + a * a))
+
+
+def beckmann_lambda(cos, alpha):
+    """Smith's Lambda of Beckmann (Walter et al. 2007, eq. 25), a = cos / (alpha sin)."""
+    if cos >= 1:
+        return 0.0
+    a = cos / (alpha * math.sqrt(1 - cos * cos))
+    return (math.exp(-a * a) / (a * math.sqrt(math.pi)) - math.erfc(a)) / 2
+
+
+def smith_g2_beckmann(v, l, a):
+    return 1 / (1 + beckmann_lambda(v, a) + beckmann_lambda(l, a))
+
+
+SEVERAL = {"smith-g2-ggx": smith_g2_ggx, "smith-g2-beckmann": smith_g2_beckmann}
 
 
 def target_function(design):
@@ -67,6 +89,40 @@ def member_values(specula, models, member, param, value, cosines):
     return [(float(c), float(v)) for c, v in rows]
 
 
+def several_variables(design, members, points):
+    """Members of a target of several per-pixel variables, their formulas evaluated here."""
+    import numpy
+    variables, param, lo, hi = design["variables"], design["param"], design["lo"], design["hi"]
+    if design["target"] not in SEVERAL:
+        raise SystemExit(f"check_front: no independent formula for the target '{design['target']}'")
+    target = SEVERAL[design["target"]]
+    axis = sorted({(i / 160) ** 2 for i in range(1, 161)} | {i / 160 for i in range(1, 161)} | {1e-6, 1e-4})
+    grid = [lo + (hi - lo) * i / (points - 1) for i in range(points)]
+    functions = {"max": numpy.maximum, "min": numpy.minimum, "sqrt": numpy.sqrt, "exp": numpy.exp, "log": numpy.log,
+                 "log2": numpy.log2, "abs": numpy.abs, "pi": math.pi, "__builtins__": {}}
+    low = 0
+    for m in members:
+        code = compile(m["formula"].replace("^", "**"), m["id"], "eval")
+
+        def f(x, y, p, code=code):
+            with numpy.errstate(all="ignore"):
+                return eval(code, functions, dict(zip([*variables, param], [x, y, p])))
+        claimed, found, where = float(m["max_abs_error"]), 0.0, None
+        for p in grid + [float(m["argmax_param"])]:
+            x, y = numpy.meshgrid(axis, axis)
+            values = numpy.broadcast_to(f(x, y, p), x.shape)
+            exact = numpy.vectorize(lambda v, l: target(v, l, p))(x, y)
+            errors = numpy.abs(values - exact)
+            k = int(numpy.nanargmax(errors))
+            if errors.flat[k] > found:
+                found, where = float(errors.flat[k]), (x.flat[k], y.flat[k], p)
+        ok = found <= claimed * (1 + 1e-9) + 1e-15
+        low += not ok
+        print(f"{m['id']:<24} claimed {claimed:.6g}  found {found:.6g} at {variables[0]} = {where[0]:.6g}, "
+              f"{variables[1]} = {where[1]:.6g}, {param} = {where[2]:.6g}  {'ok' if ok else 'CLAIM TOO LOW'}")
+    return 1 if low else 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dir")
@@ -78,6 +134,8 @@ def main():
         design = json.load(f)
     with open(f"{args.dir}/front.csv", newline="") as f:
         members = [r for r in csv.DictReader(f) if r["kind"] == "member"]
+    if len(design.get("variables", ["c"])) > 1:
+        return several_variables(design, members, min(args.points, 24))
     target = target_function(design)
     param, lo, hi = design["param"], design["lo"], design["hi"]
     log = lo > 0 and hi / lo >= 4

@@ -242,17 +242,21 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
 // SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
 std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   const Settings& s = result.settings;
-  if (s.variables.size() > 1) return "SPIR-V not counted: the lobe shader takes one per-pixel variable";
+  const bool function = is_function_target(s.target);
   const ScratchDirectory work("spirv");
   std::string why;
   const auto count = [&](Lobe& l) {
     if (!why.empty()) return;
-    if (const auto n = lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work.path(), stop, why)) l.spirv_instructions = *n;
+    const auto n = function ? function_spirv_instructions(function_expression(s, l.formula), s.variables.size(), work.path(), stop, why)
+                            : lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work.path(), stop, why);
+    if (n) l.spirv_instructions = *n;
   };
   for (auto& l : result.front) count(l);
   for (auto& l : result.references) count(l);
-  return why.empty() ? "SPIR-V: instructions of the lobe beyond F = c's, glslangValidator -V (no optimizer)"
-                     : "SPIR-V not counted: " + why;
+  if (!why.empty()) return "SPIR-V not counted: " + why;
+  return function ? fmt::format("SPIR-V: instructions of the function beyond F = {}'s, glslangValidator -V (no optimizer)",
+                                s.variables.front())
+                  : "SPIR-V: instructions of the lobe beyond F = c's, glslangValidator -V (no optimizer)";
 }
 
 // The Pareto front of `candidates` with every member passing `specula check` normalized: a member

@@ -35,10 +35,30 @@ std::string fragment_shader(const Model& m) {
          "}\n";
 }
 
-std::optional<int> shader_instructions(const Model& m, const std::filesystem::path& dir, const std::string& name,
+// A fragment shader calling `f` (GLSL of an expression in the per-pixel variables, then the
+// parameter) as specula_term, the variables from the input, the parameter a uniform.
+std::string function_shader(const expr::Expression& f, std::size_t variables) {
+  const std::vector<std::string>& names = f.variables();
+  std::string arguments, call;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    arguments += fmt::format("{}float {}", i ? ", " : "", names[i]);
+    call += i ? ", " : "";
+    call += i < variables ? fmt::format("v_in[{}]", i) : "params.x";
+  }
+  return fmt::format(
+      "#version 450\n"
+      "layout(location = 0) in vec4 v_in;\n"
+      "layout(location = 0) out vec4 o_colour;\n"
+      "layout(set = 0, binding = 0) uniform Params {{ vec4 params; }};\n"
+      "float specula_term({}) {{\n  return {};\n}}\n"
+      "void main() {{\n  o_colour = vec4(specula_term({}));\n}}\n",
+      arguments, expr::to_glsl(f), call);
+}
+
+std::optional<int> shader_instructions(const std::string& shader, const std::filesystem::path& dir, const std::string& name,
                                        const std::function<bool()>& stop, std::string& why) {
   const auto source = dir / (name + ".frag"), binary = dir / (name + ".spv"), log = dir / (name + ".log");
-  std::ofstream(source) << fragment_shader(m);
+  std::ofstream(source) << shader;
   int status = 0;
   try {
     status = run_process({"glslangValidator", "-V", "-o", binary.string(), source.string()}, log, stop,
@@ -82,10 +102,23 @@ std::optional<int> lobe_spirv_instructions(const Model& lobe_model, const std::f
                                            const std::function<bool()>& stop, std::string& why) {
   static std::atomic<int> serial = 0;
   const std::string name = fmt::format("lobe{}", serial++);
-  const auto lobe = shader_instructions(lobe_model, work_dir, name, stop, why);
-  const auto baseline = shader_instructions(make_model("lobe: c", {}, lobe_model.form()), work_dir, name + "c", stop, why);
+  const auto lobe = shader_instructions(fragment_shader(lobe_model), work_dir, name, stop, why);
+  const auto baseline =
+      shader_instructions(fragment_shader(make_model("lobe: c", {}, lobe_model.form())), work_dir, name + "c", stop, why);
   if (!lobe || !baseline) return std::nullopt;
   return *lobe - *baseline;
+}
+
+std::optional<int> function_spirv_instructions(const expr::Expression& f, std::size_t variables,
+                                               const std::filesystem::path& work_dir,
+                                               const std::function<bool()>& stop, std::string& why) {
+  static std::atomic<int> serial = 0;
+  const std::string name = fmt::format("term{}", serial++);
+  const expr::Expression first({{expr::Op::variable, 0, 0}}, f.variables());
+  const auto term = shader_instructions(function_shader(f, variables), work_dir, name, stop, why);
+  const auto baseline = shader_instructions(function_shader(first, variables), work_dir, name + "v", stop, why);
+  if (!term || !baseline) return std::nullopt;
+  return *term - *baseline;
 }
 
 }  // namespace specula::design

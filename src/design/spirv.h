@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "specula/expr/expr.h"
 #include "specula/models/model.h"
 
 namespace specula::design {
@@ -19,5 +20,13 @@ std::optional<int> spirv_function_instructions(const std::string& binary);
 /// (and `why` says why) if glslangValidator is missing or refuses the shader.
 std::optional<int> lobe_spirv_instructions(const Model& lobe_model, const std::filesystem::path& work_dir,
                                            const std::function<bool()>& stop, std::string& why);
+
+/// The SPIR-V instructions of a function target's member (or reference) `f`, an expression in the
+/// per-pixel variables and then the range parameter (if any), written as a GLSL function that a
+/// fragment shader calls with the variables from its input and the parameter from a uniform,
+/// beyond those of the function that returns its first variable; nullopt (and `why`) as above.
+std::optional<int> function_spirv_instructions(const expr::Expression& f, std::size_t variables,
+                                               const std::filesystem::path& work_dir,
+                                               const std::function<bool()>& stop, std::string& why);
 
 }  // namespace specula::design

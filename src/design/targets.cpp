@@ -25,7 +25,26 @@ constexpr std::string_view kExpr = "expr:";
 // Filament's V_SmithGGXCorrelated is (no division by a cosine squared).
 #define SMITH_GGX "2*NoV*NoL/(NoL*sqrt(NoV^2*(1 - alpha^2) + alpha^2) + NoV*sqrt(NoL^2*(1 - alpha^2) + alpha^2))"
 
-constexpr std::array<Term, 4> kTerms{{
+// Height-correlated Smith masking-shadowing of Beckmann, G₂ = 1/(1 + Λ(NoV) + Λ(NoL)) (Heitz 2014,
+// eq. 99), Λ(a) = (erf(a) − 1)/2 + e^(−a²)/(2a√π) with a = cos θ/(α sin θ) (Walter et al. 2007,
+// eq. 25): erfc(a) by Abramowitz & Stegun 7.1.26 (|error| ≤ 1.5e-7, so the term's is ≤ 1.5e-7).
+#define BECKMANN_A(x) "(" #x "/(alpha*sqrt(1 - " #x "^2)))"
+#define BECKMANN_T(x) "(1/(1 + 0.3275911*" BECKMANN_A(x) "))"
+#define BECKMANN_LAMBDA(x)                                                                                      \
+  "exp(-" BECKMANN_A(x) "^2)*(1/(" BECKMANN_A(x) "*1.7724538509055159) - " BECKMANN_T(x) "*(0.254829592 + "   \
+  BECKMANN_T(x) "*(-0.284496736 + " BECKMANN_T(x) "*(1.421413741 + " BECKMANN_T(x) "*(-1.453152027 + "          \
+  BECKMANN_T(x) "*1.061405429)))))/2"
+#define SMITH_BECKMANN "1/(1 + " BECKMANN_LAMBDA(NoV) " + " BECKMANN_LAMBDA(NoL) ")"
+// Walter et al. 2007's rational G₁ of Beckmann (eq. 27) as Λ = 1/G₁ − 1, 0 from a = 1.6 on, as
+// pbrt-v3's BeckmannDistribution::Lambda: written in b = 1/a = α·tan θ (finite at normal
+// incidence, where a is infinite) as (b² − 1.259b + 0.396)/(3.535b + 2.181), the cut at b = 0.625
+// as min(max((b − 0.625)·10³⁰, 0), 1) (a step but within 10⁻³⁰ of it).
+#define WALTER_B(x) "(alpha*sqrt(1 - " #x "^2)/" #x ")"
+#define WALTER_LAMBDA(x)                                                                                    \
+  "(" WALTER_B(x) "^2 - 1.259*" WALTER_B(x) " + 0.396)/(3.535*" WALTER_B(x) " + 2.181)*min(max((" WALTER_B(x) \
+  " - 0.625)*1e30, 0), 1)"
+
+constexpr std::array<Term, 5> kTerms{{
     {"fresnel-dielectric", "fresnel_dielectric(c, eta)", "eta", 1.2, 2.5,
      "the exact Fresnel reflectance of unpolarized light at a dielectric interface of index η"},
     {"fresnel-conductor", "fresnel_conductor(c, eta, kappa)", "eta", 0.1, 3,
@@ -33,9 +52,12 @@ constexpr std::array<Term, 4> kTerms{{
     {"schlick-weight", "(1 - c)^5", "", 1, 1, "Schlick's weight (1 − c)⁵, the power every Schlick Fresnel computes"},
     {"smith-g2-ggx", SMITH_GGX, "alpha", 0.05, 1,
      "the height-correlated Smith G₂(NoV, NoL; α) of GGX", "NoV,NoL"},
+    {"smith-g2-beckmann", SMITH_BECKMANN, "alpha", 0.05, 1,
+     "the height-correlated Smith G₂(NoV, NoL; α) of Beckmann (erfc by Abramowitz & Stegun 7.1.26: within 1.5e-7)",
+     "NoV,NoL"},
 }};
 
-constexpr std::array<TermReference, 9> kReferences{{
+constexpr std::array<TermReference, 11> kReferences{{
     {"fresnel-dielectric", "schlick", "fresnel_schlick(c, " F0_DIELECTRIC ")",
      "Schlick 1994, with F0 from η: Unreal, Filament, three.js, MaterialX"},
     {"fresnel-dielectric", "unreal-exp2", F0_DIELECTRIC " + (1 - " F0_DIELECTRIC ")*" KARIS,
@@ -48,12 +70,21 @@ constexpr std::array<TermReference, 9> kReferences{{
     {"smith-g2-ggx", "fast-smith", "2*NoV*NoL/(NoV*(NoL*(1 - alpha) + alpha) + NoL*(NoV*(1 - alpha) + alpha))",
      "Hammon 2017's approximation (Filament's V_SmithGGXCorrelatedFast, Unreal's Vis_SmithJointApprox), as G₂"},
     {"smith-g2-ggx", "exact", SMITH_GGX, "the term itself, computed directly (Filament's V_SmithGGXCorrelated)"},
+    {"smith-g2-beckmann", "walter-rational", "1/(1 + " WALTER_LAMBDA(NoV) " + " WALTER_LAMBDA(NoL) ")",
+     "Walter et al. 2007's rational G₁ as Λ (pbrt-v3's BeckmannDistribution::Lambda), height-correlated"},
+    {"smith-g2-beckmann", "exact", SMITH_BECKMANN, "the term itself, computed directly (erfc by Abramowitz & Stegun 7.1.26)"},
 }};
 
 #undef F0_DIELECTRIC
 #undef F0_CONDUCTOR
 #undef KARIS
 #undef SMITH_GGX
+#undef BECKMANN_A
+#undef BECKMANN_T
+#undef BECKMANN_LAMBDA
+#undef SMITH_BECKMANN
+#undef WALTER_B
+#undef WALTER_LAMBDA
 
 const Term* term_named(std::string_view id) {
   const auto it = std::ranges::find(kTerms, id, &Term::id);

@@ -68,8 +68,8 @@ std::vector<double> error_axis(std::size_t variables) {
 
 // |F − T| of a function target at parameter p over the box (0, 1]^k of its per-pixel variables: the
 // tensor grid of error_axis, then golden-section refinement around its 8 largest local maxima, one
-// variable at a time within a grid step (two rounds) — exact where the error is unimodal near one.
-// max_rel where T ≥ zone × T's largest value on the grid. argmax_abs_deg: acos of the first variable.
+// variable at a time within a grid step (two rounds), and along each edge of the box from the
+// edge's 2 largest local maxima — exact where the error is unimodal near one. max_rel where T ≥ zone × T's largest value on the grid. argmax_abs_deg: acos of the first variable.
 struct FunctionError {
   analysis::ApproximationError error;
   std::optional<double> not_finite_u;
@@ -139,6 +139,37 @@ FunctionError function_error(const expr::Expression& f, const expr::Expression& 
         }
       if (found > best.second) best = {x, found};
     }
+    // Each edge of the box (every variable but one at an end of its axis) as a problem of one
+    // variable: its 2 largest local maxima refined along it. A ridge across the variables climbs
+    // to the box's side, where no start in the interior reaches (a kink along NoV·NoL = const).
+    for (std::size_t w = 0; w < k && k > 1; ++w)
+      for (std::size_t corner = 0; corner < (std::size_t{1} << (k - 1)); ++corner) {
+        std::vector<std::size_t> line;  // the rows of this edge, in the order of variable w
+        for (std::size_t i = 0; i < n; ++i) {
+          std::size_t r = 0;
+          for (std::size_t v = k, bit = 0; v-- > 0;) {
+            const std::size_t index = v == w ? i : ((corner >> bit++) & 1) * (n - 1);
+            r = r * n + index;
+          }
+          line.push_back(r);
+        }
+        std::vector<std::size_t> peaks;
+        for (std::size_t i = 0; i < n; ++i)
+          if ((i == 0 || errors[line[i - 1]] <= errors[line[i]]) && (i + 1 == n || errors[line[i + 1]] <= errors[line[i]]))
+            peaks.push_back(i);
+        std::ranges::sort(peaks, [&](std::size_t a, std::size_t b) { return errors[line[a]] > errors[line[b]]; });
+        for (std::size_t j = 0; j < std::min<std::size_t>(2, peaks.size()); ++j) {
+          const std::size_t i = peaks[j];
+          std::vector<double> x(k);
+          for (std::size_t v = 0; v < k; ++v) x[v] = columns[v][line[i]];
+          const double a = axis[i == 0 ? 0 : i - 1], b = axis[std::min(i + 1, n - 1)];
+          std::vector<double> y = x;
+          const auto along = [&](double value) { y[w] = value; return error(y); };
+          double found = errors[line[i]];
+          if (a < b) std::tie(x[w], found) = golden_max(along, a, b, x[w], found);
+          if (found > best.second) best = {x, found};
+        }
+      }
     return best;
   };
   std::vector<double> abs_errors(rows), rel_errors(rows);
