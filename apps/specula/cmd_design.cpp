@@ -138,7 +138,8 @@ void add_design_command(CLI::App& app) {
                   "What to approximate: a lobe (an id, 'lobe: FORMULA' or a model file's id), a function of\n"
                   "c = cos θ in (0, 1] ('expr: FORMULA', e.g. 'expr: (1 - c)^5'), or an engine term:\n"
                   "fresnel-dielectric (eta), fresnel-conductor (eta; -p kappa=…), schlick-weight,\n"
-                  "smith-g2-ggx, smith-g2-beckmann (NoV, NoL; alpha)")
+                  "smith-g2-ggx, smith-g2-beckmann (NoV, NoL; alpha), the split-sum terms env-brdf-a-ggx,\n"
+                  "env-brdf-b-ggx, env-brdf-a-beckmann, env-brdf-b-beckmann (NoV, r; tabulated)")
       ->capture_default_str();
   cmd->add_option("--param,-p", o->params, "The target's other parameters, NAME=VALUE (repeatable)");
   cmd->add_option("--form", o->form, "The target's form, rv or nh (default: its own)")->check(CLI::IsMember({"rv", "nh"}));
@@ -184,6 +185,7 @@ void add_design_command(CLI::App& app) {
       "  specula design --target fresnel-dielectric --out fresnel     # beside Schlick's and Unreal's\n"
       "  specula design --target 'expr: (1 - c)^5' --ops fma,mul,add,max,exp --out weight\n"
       "  specula design --target smith-g2-ggx --max-cost 5 --out smith           # G2(NoV, NoL; alpha)\n"
+      "  specula design --target env-brdf-b-ggx --max-cost 5 --out envb    # beside Karis's EnvBRDFApprox\n"
       "Shards of one search on several machines, then one front (GNU parallel; a Slurm array runs\n"
       "the same command with I = $SLURM_ARRAY_TASK_ID):\n"
       "  parallel specula design --shard {}/4 --out shard{} ::: 0 1 2 3\n"

@@ -254,7 +254,7 @@ def design(target="phong", *, vars=None, params=None, form=None, param=None, ran
     lobe), fits them for `objective` ('max-abs',
     'max-rel' or 'both'), normalizes, checks and times them, and returns the Pareto front as a
     DesignResult. The target is a lobe, a function of c ("expr: (1 - c)^5") or an engine term
-    ("fresnel-dielectric", "fresnel-conductor", "schlick-weight", "smith-g2-ggx", "smith-g2-beckmann"); vars: a function
+    ("fresnel-dielectric", "fresnel-conductor", "schlick-weight", "smith-g2-ggx", "smith-g2-beckmann", "env-brdf-a-ggx", …); vars: a function
     target's per-pixel variables (default c, or the term's: ["NoV", "NoL"]). ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
     model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget).
 

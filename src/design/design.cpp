@@ -150,7 +150,7 @@ std::vector<Lobe> reference_lobes(const Settings& s) {
   std::vector<Lobe> out;
   if (is_function_target(s.target)) {  // a term's: the engines' approximations and the term itself
     ParamValues fixed = s.params;  // the target's other parameters, given or at their defaults
-    const auto info = model_definition("lobe: " + function_formula(s.target));
+    const auto info = model_definition("lobe: " + (is_tabulated(s.target) ? std::string("c") : function_formula(s.target)));
     for (const ParamInfo& p : info->params)  // a lobe formula's free names: the per-pixel variables are not parameters
       if (p.name != s.param && std::ranges::find(s.variables, p.name) == s.variables.end()) fixed.emplace(p.name, p.default_value);
     for (const TermReference& r : term_references()) {
@@ -523,6 +523,15 @@ bool is_identifier(const std::string& name) {
          std::ranges::all_of(name, [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
 }
 
+// A tabulated term: its two variables (μ = N·V, then the roughness, any names) and no range.
+void validate_tabulated_target(const Settings& s) {
+  if (s.variables.size() != 2)
+    throw InvalidField("vars", fmt::format("the target '{}' takes two per-pixel variables (NoV, r), got {}", s.target,
+                                           s.variables.size()));
+  if (!s.param.empty() || s.lo != s.hi)
+    throw InvalidField("range", fmt::format("the target '{}' has no parameter: it takes no range", s.target));
+}
+
 // A function target: its variables named once each, identifiers, distinct from the parameters and
 // each used by the formula; the formula parses in them (any other name is a parameter given its
 // value); the range, if any, not empty.
@@ -536,6 +545,7 @@ void validate_function_target(const Settings& s) {
     if (v == s.param || s.params.contains(v))
       throw InvalidField("vars", fmt::format("{} is a parameter and a per-pixel variable at once", v));
   }
+  if (is_tabulated(s.target)) return validate_tabulated_target(s);
   const expr::Expression f = [&] {
     try {
       return function_expression(s);

@@ -3,11 +3,13 @@
 // approximations the engines ship as the front's reference rows.
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <cctype>
 #include <fmt/format.h>
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/design/design.h"
+#include "split_sum.h"
 
 namespace specula::design {
 namespace {
@@ -44,7 +46,7 @@ constexpr std::string_view kExpr = "expr:";
   "(" WALTER_B(x) "^2 - 1.259*" WALTER_B(x) " + 0.396)/(3.535*" WALTER_B(x) " + 2.181)*min(max((" WALTER_B(x) \
   " - 0.625)*1e30, 0), 1)"
 
-constexpr std::array<Term, 5> kTerms{{
+constexpr std::array<Term, 9> kTerms{{
     {"fresnel-dielectric", "fresnel_dielectric(c, eta)", "eta", 1.2, 2.5,
      "the exact Fresnel reflectance of unpolarized light at a dielectric interface of index η"},
     {"fresnel-conductor", "fresnel_conductor(c, eta, kappa)", "eta", 0.1, 3,
@@ -55,9 +57,24 @@ constexpr std::array<Term, 5> kTerms{{
     {"smith-g2-beckmann", SMITH_BECKMANN, "alpha", 0.05, 1,
      "the height-correlated Smith G₂(NoV, NoL; α) of Beckmann (erfc by Abramowitz & Stegun 7.1.26: within 1.5e-7)",
      "NoV,NoL"},
+    {"env-brdf-a-ggx", "A(NoV, r) of GGX, tabulated", "", 1, 1,
+     "the split-sum scale A(NoV, r) of GGX (height-correlated Smith, α = r²): E = F0·A + B", "NoV,r", Tabulation::split_sum_a,
+     "ggx-schlick"},
+    {"env-brdf-b-ggx", "B(NoV, r) of GGX, tabulated", "", 1, 1,
+     "the split-sum bias B(NoV, r) of GGX (height-correlated Smith, α = r²): E = F0·A + B", "NoV,r", Tabulation::split_sum_b,
+     "ggx-schlick"},
+    {"env-brdf-a-beckmann", "A(NoV, r) of Beckmann, tabulated", "", 1, 1,
+     "the split-sum scale A(NoV, r) of Beckmann (α = r²)", "NoV,r", Tabulation::split_sum_a, "beckmann-schlick"},
+    {"env-brdf-b-beckmann", "B(NoV, r) of Beckmann, tabulated", "", 1, 1,
+     "the split-sum bias B(NoV, r) of Beckmann (α = r²)", "NoV,r", Tabulation::split_sum_b, "beckmann-schlick"},
 }};
 
-constexpr std::array<TermReference, 11> kReferences{{
+// Karis 2014's EnvBRDFApprox (Unreal Engine 4 on mobile, after Lazarov 2013), its exp2(−9.28·NoV)
+// as exp: a004 = min(r₁², 2^(−9.28·NoV))·r₁ + r_y with r₁ = 1 − r, r_y = 0.0425 − 0.0275·r;
+// A = −1.04·a004 + 1.04 − 0.572·r, B = 1.04·a004 − 0.04 + 0.022·r.
+#define ENV_A004 "(min((1 - r)^2, exp(-6.432405835596292*NoV))*(1 - r) + (0.0425 - 0.0275*r))"
+
+constexpr std::array<TermReference, 13> kReferences{{
     {"fresnel-dielectric", "schlick", "fresnel_schlick(c, " F0_DIELECTRIC ")",
      "Schlick 1994, with F0 from η: Unreal, Filament, three.js, MaterialX"},
     {"fresnel-dielectric", "unreal-exp2", F0_DIELECTRIC " + (1 - " F0_DIELECTRIC ")*" KARIS,
@@ -73,6 +90,10 @@ constexpr std::array<TermReference, 11> kReferences{{
     {"smith-g2-beckmann", "walter-rational", "1/(1 + " WALTER_LAMBDA(NoV) " + " WALTER_LAMBDA(NoL) ")",
      "Walter et al. 2007's rational G₁ as Λ (pbrt-v3's BeckmannDistribution::Lambda), height-correlated"},
     {"smith-g2-beckmann", "exact", SMITH_BECKMANN, "the term itself, computed directly (erfc by Abramowitz & Stegun 7.1.26)"},
+    {"env-brdf-a-ggx", "lazarov", "-1.04*" ENV_A004 " + (1.04 - 0.572*r)",
+     "Karis 2014's EnvBRDFApprox (Unreal Engine 4 mobile), after Lazarov 2013"},
+    {"env-brdf-b-ggx", "lazarov", "1.04*" ENV_A004 " + (0.022*r - 0.04)",
+     "Karis 2014's EnvBRDFApprox (Unreal Engine 4 mobile), after Lazarov 2013"},
 }};
 
 #undef F0_DIELECTRIC
@@ -83,13 +104,9 @@ constexpr std::array<TermReference, 11> kReferences{{
 #undef BECKMANN_T
 #undef BECKMANN_LAMBDA
 #undef SMITH_BECKMANN
+#undef ENV_A004
 #undef WALTER_B
 #undef WALTER_LAMBDA
-
-const Term* term_named(std::string_view id) {
-  const auto it = std::ranges::find(kTerms, id, &Term::id);
-  return it == kTerms.end() ? nullptr : &*it;
-}
 
 std::string_view trimmed(std::string_view text) {
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
@@ -98,6 +115,25 @@ std::string_view trimmed(std::string_view text) {
 }
 
 }  // namespace
+
+const Term* term_named(std::string_view id) {
+  const auto it = std::ranges::find(kTerms, id, &Term::id);
+  return it == kTerms.end() ? nullptr : &*it;
+}
+
+bool is_tabulated(std::string_view target) {
+  const Term* t = term_named(target);
+  return t && t->tabulation != Tabulation::none;
+}
+
+std::function<double(std::span<const double>)> target_function(const Settings& s) {
+  if (const Term* t = term_named(s.target); t && t->tabulation != Tabulation::none) {
+    const SplitSumPart part = t->tabulation == Tabulation::split_sum_a ? SplitSumPart::a : SplitSumPart::b;
+    return [model = t->model, part](std::span<const double> x) { return split_sum(model, part, x[0], x[1]); };
+  }
+  auto e = std::make_shared<const expr::Expression>(function_expression(s));
+  return [e](std::span<const double> x) { return expr::evaluate(*e, x); };
+}
 
 std::span<const Term> terms() { return kTerms; }
 std::span<const TermReference> term_references() { return kReferences; }

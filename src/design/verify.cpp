@@ -75,7 +75,8 @@ struct FunctionError {
   std::optional<double> not_finite_u;
 };
 
-FunctionError function_error(const expr::Expression& f, const expr::Expression& t, const Settings& s, double p) {
+FunctionError function_error(const expr::Expression& f, const std::function<double(std::span<const double>)>& t,
+                             const Settings& s, double p) {
   const std::size_t k = s.variables.size();
   const std::vector<double> axis = error_axis(k);
   std::size_t rows = 1;
@@ -84,7 +85,12 @@ FunctionError function_error(const expr::Expression& f, const expr::Expression& 
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t v = 0, rest = r; v < k; ++v, rest /= axis.size()) columns[v].push_back(axis[rest % axis.size()]);
   if (!s.param.empty()) columns.emplace_back(rows, p);
-  const std::vector<double> fv = evaluate_rows(f, columns), tv = evaluate_rows(t, columns);
+  const std::vector<double> fv = evaluate_rows(f, columns);
+  std::vector<double> tv(rows), at_row(columns.size());
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t v = 0; v < columns.size(); ++v) at_row[v] = columns[v][r];
+    tv[r] = t(at_row);
+  }
   FunctionError out;
   for (std::size_t r = 0; r < rows; ++r)
     if (!std::isfinite(fv[r])) {
@@ -96,7 +102,7 @@ FunctionError function_error(const expr::Expression& f, const expr::Expression& 
   const auto at = [&](std::span<const double> x) {
     std::ranges::copy(x, point.begin());
     if (!s.param.empty()) point.back() = p;
-    return std::pair{expr::evaluate(f, point), expr::evaluate(t, point)};
+    return std::pair{expr::evaluate(f, point), t(point)};
   };
   const auto abs_error = [&](std::span<const double> x) { const auto [a, b] = at(x); return std::abs(a - b); };
   const auto rel_error = [&](std::span<const double> x) {
@@ -242,7 +248,7 @@ const std::vector<double>& probe_log_cos() {
 std::function<AtParam(double)> error_at_param(const Lobe& l, const Settings& s) {
   if (is_function_target(s.target)) {
     auto f = std::make_shared<const expr::Expression>(function_expression(s, l.formula));
-    auto t = std::make_shared<const expr::Expression>(function_expression(s));
+    auto t = std::make_shared<const std::function<double(std::span<const double>)>>(target_function(s));
     return [f, t, &s](double p) {
       const FunctionError e = function_error(*f, *t, s, p);
       return AtParam{p, e.error, e.not_finite_u};

@@ -57,7 +57,8 @@ std::string function_glsl(const design::Result& r, const design::Lobe& l) {
 std::vector<double> function_error_curve(const design::Result& r, const design::Lobe& member, double p,
                                          const std::vector<double>& first) {
   const design::Settings& s = r.settings;
-  const expr::Expression f = design::function_expression(s, member.formula), t = design::function_expression(s);
+  const expr::Expression f = design::function_expression(s, member.formula);
+  const auto t = design::target_function(s);
   constexpr int kOthers = 32;
   const std::size_t others = s.variables.size() - 1;
   std::size_t combinations = 1;
@@ -71,7 +72,7 @@ std::vector<double> function_error_curve(const design::Result& r, const design::
     for (std::size_t j = 0; j < combinations; ++j) {
       for (std::size_t i = 0, rest = j; i < others; ++i, rest /= kOthers)
         point[i + 1] = static_cast<double>(rest % kOthers + 1) / kOthers;
-      const double e = std::abs(expr::evaluate(f, point) - expr::evaluate(t, point));
+      const double e = std::abs(expr::evaluate(f, point) - t(point));
       worst = std::isnan(e) ? e : std::max(worst, e);
       if (std::isnan(worst)) break;
     }

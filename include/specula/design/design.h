@@ -80,13 +80,19 @@ struct Ranges {
 /// A term of a microfacet BRDF that engines approximate by hand, as a target of the designer
 /// besides lobes (docs/designer.md, "Targets beyond lobes"): a function of c = cos θ ∈ (0, 1],
 /// exact as written, with its usual range parameter and the engines' approximations of it.
+/// How a term is computed: its formula, or one of the split-sum terms tabulated from specula's
+/// cubature (docs/designer.md, "The environment BRDF").
+enum class Tabulation { none, split_sum_a, split_sum_b };
+
 struct Term {
   std::string_view id;       ///< the target's name: "fresnel-dielectric"
-  std::string_view formula;  ///< the exact term in c and the parameters (specula's expressions)
+  std::string_view formula;  ///< the exact term in c and the parameters (specula's expressions); a tabulated term's description
   std::string_view param;    ///< the range parameter ("" for none)
   double lo = 0, hi = 0;     ///< its default range
   std::string_view summary;
   std::string_view variables = "c";  ///< its per-pixel variables, comma-separated
+  Tabulation tabulation = Tabulation::none;
+  std::string_view model = {};  ///< a tabulated term's microfacet model ("ggx-schlick")
 };
 
 /// An engine's approximation of a term: a reference row of the front, timed and measured as the
@@ -108,6 +114,10 @@ std::span<const TermReference> term_references();
 bool is_function_target(std::string_view target);
 /// The formula of a function target: the text after "expr:", or the Term's formula.
 std::string function_formula(std::string_view target);
+/// The built-in term of that id, or nullptr.
+const Term* term_named(std::string_view id);
+/// Whether `target` is a tabulated term (no formula: its values are interpolated).
+bool is_tabulated(std::string_view target);
 
 /// The most per-pixel variables a function target may have.
 inline constexpr std::size_t kMaxVariables = 3;
@@ -244,6 +254,11 @@ std::string with_values(std::string_view formula, const ParamValues& params);
 /// A function target's formula (or a member's, a reference's, with `formula` given) as an
 /// expression in formula_variables(s), the target's other parameters written as their values.
 expr::Expression function_expression(const Settings& s, std::string_view formula = {});
+/// A function target's values: f(point), the point being its per-pixel variables and then its
+/// range parameter (if any) — its expression evaluated (function_expression), or a tabulated term
+/// interpolated. Valid while `s` lives.
+std::function<double(std::span<const double>)> target_function(const Settings& s);
+
 /// Whether l is a formula (every member, and the evaluable references: the spherical Gaussian,
 /// the engines' approximations of a term) rather than a built-in model's id.
 bool is_formula(const Lobe& l);
