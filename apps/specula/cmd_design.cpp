@@ -19,7 +19,7 @@ namespace {
 struct DesignOptions {
   std::string target = "phong";
   std::vector<std::string> params;
-  std::string form, range, vars, objective = "max-abs", ops = "all", shard = "0/1", out;
+  std::string form, range, vars, objective = "max-abs", ops = "all", shard = "0/1", out, precision = "double";
   design::Settings settings;
   std::optional<std::int64_t> max_forms;
   std::vector<std::string> merge;
@@ -77,6 +77,7 @@ design::Settings settings_of(const DesignOptions& o) {
     read_range(o.range, s);
   }
   s.objective = choice_named<design::Objective, design::kObjectiveCount>("objective", o.objective, Spelling::option);
+  s.precision = choice_named<design::Precision, design::kPrecisionCount>("precision", o.precision, Spelling::option);
   s.operations = design::parse_operations(o.ops);
   s.max_forms = o.max_forms;
   read_shard(o.shard, s);
@@ -169,6 +170,10 @@ void add_design_command(CLI::App& app) {
       ->check(CLI::Range(0, design::Ranges::threads));
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
+  cmd->add_option("--precision", o->precision, "The members' constants and arithmetic: double (as fitted), or as a shader\n"
+                  "has them, float or half: constants rounded, then moved one ulp at a time for the lowest\n"
+                  "error, every operation rounded, the error measured again")
+      ->capture_default_str()->check(one_of<design::Precision, design::kPrecisionCount>());
   cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml, design.json, front.svg, index.html "
                   "(swapped in whole)");
   cmd->add_option("--merge", o->merge, "Instead of a search: merge the fronts of these --out directories (shards of "

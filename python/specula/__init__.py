@@ -248,7 +248,7 @@ class DesignResult:
 
 
 def design(target="phong", *, vars=None, params=None, form=None, param=None, range=None, objective="max-abs", zone=0.5,
-           ops="all", max_cost=6, max_forms=None, time=540.0, seed=1, threads=0, measure_cost=True):
+           ops="all", max_cost=6, max_forms=None, time=540.0, seed=1, threads=0, measure_cost=True, precision="double"):
     """The lobe designer (specula design, docs/designer.md): searches cheap lobe shapes against the
     target over `range` of its parameter `param` (both None: the target's own, n = (1, 1000) for a
     lobe), fits them for `objective` ('max-abs',
@@ -256,7 +256,8 @@ def design(target="phong", *, vars=None, params=None, form=None, param=None, ran
     DesignResult. The target is a lobe, a function of c ("expr: (1 - c)^5") or an engine term
     ("fresnel-dielectric", "fresnel-conductor", "schlick-weight", "smith-g2-ggx", "smith-g2-beckmann", "env-brdf-a-ggx", …); vars: a function
     target's per-pixel variables (default c, or the term's: ["NoV", "NoL"]). ops: the operations allowed ('fma,mul,max', …, or 'all'); max_cost: the cost
-    model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget).
+    model's budget, [1, 24]; max_forms: at most this many shapes (a deterministic budget);
+    precision: 'double', 'float' or 'half', the members' constants and arithmetic as a shader has them.
 
     >>> r = specula.design("phong", range=(1, 100), ops="mul", max_cost=1, measure_cost=False, time=60)
     >>> [lobe["formula"] for lobe in r.front]
@@ -265,4 +266,4 @@ def design(target="phong", *, vars=None, params=None, form=None, param=None, ran
     return DesignResult(_design(dict(target=target, vars=None if vars is None else list(vars), params=dict(params if params is not None else {}), form=form, param=param, range=range,
                                       objective=objective, zone=zone, ops=ops, max_cost=max_cost,
                                       max_forms=max_forms, time=time, seed=seed, threads=threads,
-                                      measure_cost=measure_cost)))
+                                      measure_cost=measure_cost, precision=precision)))

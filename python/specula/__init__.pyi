@@ -126,4 +126,5 @@ def fit(X: npt.ArrayLike | dict[str, npt.ArrayLike], y: npt.ArrayLike, *, variab
 def design(target: str = ..., *, vars: list[str] | None = ..., params: dict[str, float] | None = ..., form: Literal["rv", "nh"] | None = ...,
            param: str | None = ..., range: tuple[float, float] | None = ..., objective: Literal["max-abs", "max-rel", "both"] = ...,
            zone: float = ..., ops: str = ..., max_cost: int = ..., max_forms: int | None = ..., time: float = ...,
-           seed: int = ..., threads: int = ..., measure_cost: bool = ...) -> DesignResult: ...
+           seed: int = ..., threads: int = ..., measure_cost: bool = ...,
+           precision: Literal["double", "float", "half"] = ...) -> DesignResult: ...

@@ -134,6 +134,8 @@ py::dict lobe_dict(const design::Lobe& l) {
     d["k"] = number_or_none(l.k);
     d["k_formula"] = l.k_formula;
     d["check"] = l.check;
+    d["precision_error"] = l.precision_error;
+    d["precision_note"] = l.precision_note;
   }
   return d;
 }
@@ -171,6 +173,8 @@ py::dict design_run(const py::dict& kwargs) {
   s.seed = argument<std::uint64_t>(kwargs["seed"], "seed");
   s.threads = argument<int>(kwargs["threads"], "threads");
   s.measure_cost = argument<bool>(kwargs["measure_cost"], "measure_cost");
+  s.precision = choice_named<design::Precision, design::kPrecisionCount>("precision", argument<std::string>(kwargs["precision"], "precision"),
+                                                                         Spelling::key);
   design::validate(s);
   const design::Result r = run_interruptible([&] {
     design::Settings with_cancel = s;

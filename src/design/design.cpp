@@ -18,6 +18,7 @@
 
 #include "fitting.h"
 #include "laws.h"
+#include "precision.h"
 #include "native.h"
 #include "process.h"
 #include "shapes.h"
@@ -288,6 +289,17 @@ template <class Tell>
 void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stopper, const Tell& tell) {
   const Settings& s = result.settings;
   const auto stop = [&] { return stopper.cancelled(); };
+  if (s.precision != Precision::f64 && !result.cancelled) {
+    tell("rounding constants", 0, static_cast<std::int64_t>(members.size()), nullptr);
+    const std::vector<Samples> rows = samples_over(s, kFineGrid);
+    tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t i) {
+      if (stop()) return;
+      round_member(members[i], rows, s, objective_error(members[i], s.objective));
+      set_errors(members[i], domain_error(members[i], s, stop));
+    });
+    if (stop()) result.cancelled = true;
+    std::erase_if(members, [&](const Lobe& m) { return !std::isfinite(objective_error(m, s.objective)); });
+  }
   // Every finished lobe stays a candidate (not only the cost model's front): one that a refused
   // member dominated may enter the front in its place.
   result.references = reference_lobes(s);
@@ -396,7 +408,8 @@ std::vector<std::pair<std::string_view, std::string>> search_keys(const Settings
           {"form", s.form ? to_string(*s.form) : "(the target's own)"},
           {"range", fmt::format("{}={}:{}", s.param, s.lo, s.hi)},
           {"objective", to_string(s.objective)},
-          {"zone", fmt::format("{}", s.zone)}};
+          {"zone", fmt::format("{}", s.zone)},
+          {"precision", to_string(s.precision)}};
 }
 
 // InvalidField "merge" naming the first setting on which a shard's search differs from the first

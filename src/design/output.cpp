@@ -48,12 +48,13 @@ std::string normalization_of(const Lobe& l) {
 }
 
 std::string row(const Lobe& l, double log, std::string_view kind) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), kind,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), kind,
                      csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
                      number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
                      l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
                      l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing),
-                     number(l.k), csv_field(l.check), csv_field(normalization_of(l)));
+                     number(l.k), csv_field(l.check), csv_field(normalization_of(l)), number(l.precision_error),
+                     csv_field(l.precision_note));
 }
 
 // A member's formula with constants to 6 digits (the files hold them in full).
@@ -180,6 +181,8 @@ class DesignReader {
       return choice_named<Objective, kObjectiveCount>("objective", objective, Spelling::key);
     });
     s.zone = number(j, "zone");
+    const std::string precision = j.contains("precision") ? text(j, "precision") : "double";  // absent from earlier files
+    s.precision = parsed("", [&] { return choice_named<Precision, kPrecisionCount>("precision", precision, Spelling::key); });
     s.operations = operations(j);
     s.max_cost = small_integer(j, "max_cost");
     const Json& seed = value(j, "", "seed");
@@ -239,7 +242,7 @@ class DesignReader {
 std::string front_csv(const Result& result) {
   std::string out =
       "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
-      "spirv_instructions,model_cost,shape,timing,k,check,normalization\n";
+      "spirv_instructions,model_cost,shape,timing,k,check,normalization,precision_error,precision_note\n";
   const double log = log_ns(result);
   for (const auto& l : result.front) out += row(l, log, "member");
   for (const auto& l : result.references) out += row(l, log, "reference");
@@ -316,7 +319,7 @@ std::string design_json(const Result& result) {
   for (Operation op : s.operations) ops.push_back(to_string(op));
   nlohmann::json j{{"target", s.target}, {"variables", s.variables}, {"params", s.params}, {"form", s.form ? to_string(*s.form) : ""},
                    {"param", s.param}, {"lo", s.lo}, {"hi", s.hi}, {"objective", to_string(s.objective)},
-                   {"zone", s.zone}, {"ops", ops}, {"max_cost", s.max_cost}, {"seed", s.seed},
+                   {"zone", s.zone}, {"precision", to_string(s.precision)}, {"ops", ops}, {"max_cost", s.max_cost}, {"seed", s.seed},
                    {"shard", s.shard}, {"shards", s.shards}, {"forms_screened", result.forms_screened},
                    {"forms_same", result.forms_same}, {"forms_total", result.forms_total}, {"stopped", result.cancelled},
                    {"members", nlohmann::json::array()}};

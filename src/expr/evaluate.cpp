@@ -52,6 +52,16 @@ constexpr std::size_t kChunk = 256;
 // 50 rows of x·x·x + x·x + x run 10 % slower through it, 1000 rows 35 % faster).
 constexpr std::size_t kSimdMinRows = 64;
 
+}  // namespace
+
+double apply(Op op, double a, double b) {
+  double out = 0;
+  with_function(op, [&](auto f) { out = f(a); }, [&](auto f) { out = f(a, b); });
+  return out;
+}
+
+namespace {
+
 double run(const Expression& e, std::span<const double> variables, double* stack) {
   std::size_t top = 0;
   for (const Node& node : e.nodes()) {

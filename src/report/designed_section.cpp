@@ -3,6 +3,7 @@
 // designed lobes beat F_log on both error and measured cost.
 #include <cmath>
 #include <fmt/format.h>
+#include <tuple>
 
 #include "sections.h"
 #include "specula/design/design.h"
@@ -19,7 +20,7 @@ const design::Lobe* reference(const design::Result& r, std::string_view id) {
   return nullptr;
 }
 
-std::string designed_table(const design::Result& r) {
+std::string designed_table(const design::Result& r, std::string_view target = "cⁿ") {
   std::vector<std::vector<std::string>> rows;
   const auto row = [&](const design::Lobe& l) {
     rows.push_back({xml_escape(l.id), show(l.max_abs), show(l.ns_per_eval, 3), l.ops > 0 ? std::to_string(l.ops) : "–",
@@ -27,7 +28,7 @@ std::string designed_table(const design::Result& r) {
   };
   for (const auto& l : r.front) row(l);
   for (const auto& l : r.references) row(l);
-  return html_table({"lobe", "max |F − cⁿ|", "ns per value", "ops", "check", "F"}, rows, "models");
+  return html_table({"lobe", fmt::format("max |F − {}|", target), "ns per value", "ops", "check", "F"}, rows, "models");
 }
 
 // The members that beat `ref` on both axes, as prose.
@@ -74,6 +75,48 @@ Section designed_section(Context& context) {
                                   "<a href=\"designed-models.toml\">designed-models.toml</a>") +
       designed_table(r);
   return {"designed", "Beyond the paper: designed lobes", html};
+}
+
+Section engine_terms_section(Context& context) {
+  struct Term {
+    std::string_view target, what;
+    int cost, quick_cost;
+    std::string_view ops;
+  };
+  // Costs that finish in seconds each (release, two cores); the quick report's in one or two.
+  constexpr Term kTerms[] = {{"fresnel-dielectric", "the exact dielectric Fresnel over η ∈ [1.2, 2.5]", 4, 1, "fma,mul,max"},
+                             {"smith-g2-ggx", "the height-correlated Smith G₂ of GGX over α ∈ [0.05, 1]", 3, 1, "fma,mul,max"},
+                             {"env-brdf-b-ggx", "the split-sum bias B(NoV, r) of GGX", 4, 1, "fma,mul,add,max"}};
+  std::string html =
+      "<p>Engines approximate the other terms of a microfacet BRDF by hand: Schlick's Fresnel, the fast Smith "
+      "form, Karis's <code>EnvBRDFApprox</code>. The designer searches against each exact term, the engines' forms "
+      "measured and timed beside its members in the same run (docs/designer.md, \"Targets beyond lobes\"; larger "
+      "searches there find more).</p>\n";
+  for (const Term& t : kTerms) {
+    context.progress(fmt::format("designed terms: {}", t.target));
+    design::Settings s;
+    s.target = std::string(t.target);
+    s.variables = design::default_variables(s.target);
+    const design::DefaultRange range = design::default_range(s.target, s.variables);
+    std::tie(s.param, s.lo, s.hi) = std::tie(range.param, range.lo, range.hi);
+    s.max_cost = context.quick() ? t.quick_cost : t.cost;
+    s.operations = design::parse_operations(t.ops);
+    s.measure_cost = !context.quick();  // the quick report's tests read the errors; compiling three times costs 10 s there
+    const design::Result r = design::design(s);
+    std::string beaten;
+    for (const auto& ref : r.references)
+      if (ref.max_abs > 0) beaten.append(" ").append(dominating(r, &ref));
+    const std::string command =
+        fmt::format("specula design --target {} --ops {} --max-cost {} --out D", t.target, t.ops, s.max_cost);
+    html += fmt::format("<h3>{}</h3>\n<p>Against {}: {} shapes up to cost {} in {:.0f} s.{}</p>\n", t.target, t.what,
+                        r.forms_total, s.max_cost, r.seconds, beaten) +
+            context.svg_figure(fmt::format("designed-{}", t.target), to_svg(design_front_chart(r)),
+                               fmt::format("The designed front against {} and the engines' approximations, measured "
+                                           "in the same run. {}.", t.target, r.cost_note),
+                               command, "") +
+            designed_table(r, t.target);
+  }
+  return {"terms", "Beyond the paper: the engines' terms designed", html};
 }
 
 }  // namespace specula::report

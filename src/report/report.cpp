@@ -74,6 +74,7 @@ void write_report(const Options& requested) {
   sections.push_back(fitted_norms_section(context));
   sections.push_back(cost_section(context));
   sections.push_back(designed_section(context));
+  sections.push_back(engine_terms_section(context));
   sections.push_back(differences_section(context));
   sections.insert(sections.begin(), claims_section(context));
   context.progress("index.html");

@@ -25,6 +25,7 @@ Section fitted_norms_section(Context& context);  ///< exact vs fitted k; fits wh
 Section cost_section(Context& context);          ///< evaluation cost against accuracy
 Section differences_section(Context& context);   ///< log lobes against Blinn-Phong, as images
 Section designed_section(Context& context);      ///< the lobe designer on the paper's problem
+Section engine_terms_section(Context& context);  ///< the designer on Fresnel, Smith G₂ and the split sum
 
 /// The default comparison sphere (render::default_scene) shaded with `model`, size × size pixels.
 render::Image sphere(const Model& model, int size);

@@ -78,7 +78,7 @@ struct DesignJob final : Job {
              {"model_cost", l.reference ? Json() : Json(l.model_cost)},
              {"k", number_or_null(l.k)},
              {"k_formula", l.k_formula},
-             {"check", l.check}};
+             {"check", l.check}, {"precision_note", l.precision_note}};
     if (!l.reference && !design::is_function_target(result.settings.target)) {  // a lobe: a model card can take it
       out["definition"] = definition(design::member_model(result, l, false));
       out["definition_normalized"] = definition(design::member_model(result, l, true));
@@ -139,7 +139,7 @@ void read_range(const Fields& f, design::Settings& s) {
 
 std::shared_ptr<Job> design_job(std::string_view body, const Limits& limits) {
   const Fields f(body, {"target", "vars", "params", "form", "param", "range", "objective", "zone", "ops", "max_cost", "max_forms",
-                        "time", "seed", "timing"});
+                        "time", "seed", "timing", "precision"});
   auto job = std::make_shared<DesignJob>();
   design::Settings& s = job->settings;
   s.target = f.text_or("target", "phong");
@@ -157,6 +157,8 @@ std::shared_ptr<Job> design_job(std::string_view body, const Limits& limits) {
     fail("time", fmt::format("time {} is outside (0, {}] seconds", s.time_s, limits.max_design_seconds));
   s.seed = static_cast<std::uint64_t>(f.integer_or("seed", 1, 0, std::int64_t{1} << 53));
   s.measure_cost = f.flag_or("timing", true);
+  s.precision = choice_named<design::Precision, design::kPrecisionCount>("precision", f.text_or("precision", "double"),
+                                                                         Spelling::key);
   s.threads = 1;  // a job never takes more than one core from the requests
   s.cancel = &job->cancel;
   design::validate(s);  // its InvalidFields name the request's keys

@@ -255,6 +255,7 @@ TEST_F(Cli, DesignRefusesBadSettingsInOneLineWritingNothing) {
   EXPECT_THAT(bad(with({"--time", "-1"})).err, HasSubstr("time"));
   EXPECT_THAT(bad(with({"--ops", "fma,tan"})).err, HasSubstr("unknown operation 'tan'"));
   EXPECT_THAT(bad(with({"--objective", "median"})).err, HasSubstr("--objective"));
+  EXPECT_THAT(bad(with({"--precision", "quad"})).err, HasSubstr("--precision"));
   EXPECT_THAT(bad({"design", "--out", "/proc/version/x", "-q", "--max-cost", "1", "--no-timing"}).err,
               HasSubstr("cannot"));
   EXPECT_FALSE(fs::exists(out));

@@ -4,6 +4,7 @@ same numbers to the last digit where the path is the same) and against independe
 import io
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -280,6 +281,15 @@ def test_design_takes_an_engine_term_with_its_own_range(specula):
     assert all(l["check"] == "-" for l in r.front)
     with pytest.raises(ValueError, match="range"):
         specula.design("expr: c^eta")  # a parameter without a range of its own
+    # In half: each member's constants are half values and its error in half is reported.
+    half = specula.design("schlick-weight", ops="fma,mul", max_cost=1, measure_cost=False, threads=1, time=30,
+                          precision="half")
+    line = half.front[-1]
+    assert line["precision_error"] >= 0 and line["formula"] != r.front[-1]["formula"]
+    numbers = re.findall(r"\d+\.\d+(?:e[-+]?\d+)?", line["formula"])
+    assert numbers and all(float(np.float16(float(x))) == float(x) for x in numbers), line["formula"]
+    with pytest.raises(ValueError, match="precision"):
+        specula.design("schlick-weight", precision="quad")
 
 
 def test_complex_and_text_arrays_are_type_errors_not_silent_casts(specula):

@@ -285,6 +285,26 @@ TEST_F(BeyondThePaperTest, MeasuresEveryCompensationAgainstTheWalk) {
   EXPECT_EQ(csv("compensation-cells.csv").size(), 1u + 9 * 16);
 }
 
+// The engine terms designed: each term's front against its exact term with the engines' own
+// approximations as rows, measured in that run (Schlick's Fresnel 0.113, the fast Smith form 0.214,
+// EnvBRDFApprox's B 0.163), and each front's figure beside the page.
+TEST_F(BeyondThePaperTest, DesignsTheEnginesTermsBesideTheirApproximations) {
+  const std::string terms = section("terms");
+  ASSERT_FALSE(terms.empty());
+  EXPECT_NE(html().find("<a href=\"#terms\">"), std::string::npos);
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"fresnel-dielectric", "schlick"}, {"smith-g2-ggx", "fast-smith"}, {"env-brdf-b-ggx", "lazarov"}};
+  for (const auto& [target, reference] : expected) {
+    EXPECT_NE(terms.find("<h3>" + target + "</h3>"), std::string::npos) << target;
+    EXPECT_TRUE(std::filesystem::exists(dir() / ("designed-" + target + ".svg"))) << target;
+    EXPECT_FALSE(row(terms, {reference}).empty()) << reference;
+  }
+  EXPECT_EQ(row(terms, {"schlick"}).at(1), "0.113");
+  EXPECT_EQ(row(terms, {"fast-smith"}).at(1), "0.2142");
+  EXPECT_EQ(row(terms, {"lazarov"}).at(1), "0.1627");
+  EXPECT_TRUE(row(terms, {"unreal-exp3"}).empty());  // the control: a row that is not there is not found
+}
+
 TEST_F(BeyondThePaperTest, CostTableListsEveryModel) {
   const std::string cost = section("cost");
   for (const auto& info : models()) {

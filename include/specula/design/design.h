@@ -64,6 +64,23 @@ constexpr std::optional<Objective> objective_named(std::string_view name) {
   return enum_named<Objective, kObjectiveCount>(name, [](Objective o) { return to_string(o); });
 }
 
+/// The precision a member's constants and arithmetic are taken in (--precision): double as
+/// computed, or as a GPU shader has them, float32 or binary16 (docs/designer.md, "Precision").
+enum class Precision { f64, f32, f16 };
+inline constexpr std::size_t kPrecisionCount = static_cast<std::size_t>(Precision::f16) + 1;  // f16: the last
+constexpr const char* to_string(Precision p) noexcept {
+  switch (p) {
+    case Precision::f64: return "double";
+    case Precision::f32: return "float";
+    case Precision::f16: return "half";
+  }
+  return "";
+}
+static_assert(names_complete<Precision, kPrecisionCount>([](Precision p) { return to_string(p); }));
+constexpr std::optional<Precision> precision_named(std::string_view name) {
+  return enum_named<Precision, kPrecisionCount>(name, [](Precision p) { return to_string(p); });
+}
+
 /// The documented ranges of the options: anything outside is InvalidField named by its key.
 struct Ranges {
   static constexpr int max_cost = 24;                 ///< max_cost in [1, 24]
@@ -156,6 +173,9 @@ struct Settings {
   int threads = 0;               ///< 0: all cores
   int shard = 0, shards = 1;     ///< this run screens the forms i with i mod shards = shard
   bool measure_cost = true;      ///< time the front as native code (else the cost model only)
+  /// The members' per-pixel constants rounded to this and adjusted one ulp at a time, their
+  /// arithmetic evaluated in it (double: as fitted).
+  Precision precision = Precision::f64;
   const std::atomic<bool>* cancel = nullptr;
 };
 
@@ -177,6 +197,11 @@ struct Lobe {
   double k = NAN;               ///< members: k at timing_param
   std::string k_formula;        ///< members: k(p) in closed form, where one is derived; else empty (quadrature)
   std::string check;            ///< members: "pass", or what `specula check` finds failing, and where
+  /// members, with --precision float or half: the largest error on the fits' rows with the
+  /// arithmetic in that precision (NaN otherwise), and a note where that is past the error the
+  /// member had before its constants were rounded.
+  double precision_error = NAN;
+  std::string precision_note;
 };
 
 struct Result {

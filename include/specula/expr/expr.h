@@ -136,6 +136,9 @@ std::string to_python(const Expression& e);
 /// `variables[i]` is the value of e.variables()[i]; throws InvalidArgument if too few are given.
 double evaluate(const Expression& e, std::span<const double> variables);
 
+/// One operation (not a leaf) on its operands as evaluate() computes it; b unused by a unary one.
+double apply(Op op, double a, double b = 0);
+
 /// out[r] = evaluate(e, row r), where columns[i][r] is variable i in row r. Works through the rows
 /// in chunks, one whole chunk per node. Throws InvalidArgument if a column is missing or its
 /// length differs from out.size().
