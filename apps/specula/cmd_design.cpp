@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "specula/design/design.h"
 #include "specula/design/output.h"
+#include "specula/gl/timing.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/files.h"
 #include "specula/report/design_page.h"
@@ -24,7 +25,20 @@ struct DesignOptions {
   std::optional<std::int64_t> max_forms;
   std::vector<std::string> merge;
   bool quiet = false;
+  bool gpu_timing = true;
 };
+
+// The GPU axis: the functions timed in an offscreen GL context (the GPU, or llvmpipe without one).
+design::GpuTiming time_on_gpu(const std::vector<design::GpuFunction>& functions) {
+  try {
+    const gl::Context context;
+    std::vector<gl::GlslFunction> glsl;
+    for (const auto& f : functions) glsl.push_back({f.glsl, f.variables, f.has_param, f.param});
+    return {gl::time_functions(context, glsl), gl::to_string(context.info())};
+  } catch (const gl::GlError& e) {
+    return {{}, e.what()};
+  }
+}
 
 // "NAME=LO:HI".
 void read_range(const std::string& text, design::Settings& s) {
@@ -80,6 +94,7 @@ design::Settings settings_of(const DesignOptions& o) {
   s.precision = choice_named<design::Precision, design::kPrecisionCount>("precision", o.precision, Spelling::option);
   s.operations = design::parse_operations(o.ops);
   s.max_forms = o.max_forms;
+  if (o.gpu_timing) s.gpu_timer = time_on_gpu;
   read_shard(o.shard, s);
   return s;
 }
@@ -123,7 +138,8 @@ void run(const DesignOptions& o) {
   std::cout << design::front_table(result)
             << fmt::format("{} of {} shapes screened in {:.1f} s ({} computed what a cheaper shape computes){}; {}\n",
                            result.forms_screened, result.forms_total, result.seconds, result.forms_same,
-                           result.cancelled ? " (stopped)" : "", result.cost_note);
+                           result.cancelled ? " (stopped)" : "", result.cost_note)
+            << (result.gpu_note.empty() ? std::string() : result.gpu_note + "\n");
   if (signal != 0) {
     request_stop(signal);
     throw Interrupted(Interrupted::Reason::signal, signal);
@@ -170,11 +186,13 @@ void add_design_command(CLI::App& app) {
       ->check(CLI::Range(0, design::Ranges::threads));
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
+  cmd->add_flag("!--no-gpu-timing", o->gpu_timing, "Do not time the front on the GPU (the GPU axis: an offscreen GL context,\n"
+                "the GPU or Mesa's llvmpipe without one)");
   cmd->add_option("--precision", o->precision, "The members' constants and arithmetic: double (as fitted), or as a shader\n"
                   "has them, float or half: constants rounded, then moved one ulp at a time for the lowest\n"
                   "error, every operation rounded, the error measured again")
       ->capture_default_str()->check(one_of<design::Precision, design::kPrecisionCount>());
-  cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml, design.json, front.svg, index.html "
+  cmd->add_option("--out", o->out, "The directory to write: front.csv, models.toml, design.json, front.svg, front-gpu.svg, index.html "
                   "(swapped in whole)");
   cmd->add_option("--merge", o->merge, "Instead of a search: merge the fronts of these --out directories (shards of "
                   "one search), measuring every lobe again here and timing it (unless --no-timing)")->expected(1, 10'000);

@@ -23,6 +23,7 @@
 #include "process.h"
 #include "shapes.h"
 #include "specula/catalogue/catalogue.h"
+#include "specula/glsl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/simd/lobes.h"
 #include "checks.h"
@@ -240,6 +241,61 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   return note;
 }
 
+// A lobe or function as `float specula_term(variables…, parameter)` for the GPU axis at
+// timing_param: a formula through its expression's GLSL with the parameter's value written in (its
+// subexpressions then fold at compile time, as a renderer's uniforms are computed once per
+// material: not per pixel), a built-in lobe through its model's lobe function; nullopt for a
+// built-in whose GLSL has no lobe function of c and the parameter.
+std::optional<GpuFunction> gpu_function(const Lobe& l, const Settings& s) {
+  const double p = timing_param(s);
+  GpuFunction f{{}, static_cast<int>(s.variables.size()), !s.param.empty(), p};
+  std::string arguments;
+  for (const auto& name : formula_variables(s)) arguments += (arguments.empty() ? "float " : ", float ") + name;
+  if (is_formula(l)) {
+    Settings at_p = s;
+    if (!s.param.empty()) at_p.params[s.param] = p;
+    at_p.param.clear();
+    f.glsl = fmt::format("float specula_term({}) {{\n  return {};\n}}\n", arguments,
+                         expr::to_glsl(function_expression(at_p, l.formula)));
+    return f;
+  }
+  // The model's `float specula_<id>_lobe(float c[, float n])`.
+  const std::string model = glsl::model_glsl(lobe_at(l, s)(p));
+  const std::size_t at = model.find("_lobe(float c");
+  const std::size_t start = model.rfind("float specula_", at);
+  if (at == std::string::npos || start == std::string::npos) return std::nullopt;
+  const std::string name = model.substr(start + 6, at + 5 - start - 6);
+  const std::string parameters = model.substr(at + 13, model.find(')', at) - at - 13);  // "" or ", float n"
+  if (parameters.empty() == f.has_param || std::ranges::count(parameters, ',') > 1) return std::nullopt;
+  f.glsl = fmt::format("{}float specula_term({}) {{\n  return {}({});\n}}\n", model, arguments, name,
+                       f.has_param ? "c, " + s.param : std::string("c"));
+  return f;
+}
+
+// The front and the references timed on the GPU (Settings::gpu_timer), and each member's place on
+// the front of GPU cost against error among the front's members; the note names the device.
+std::string time_on_gpu(Result& result) {
+  const Settings& s = result.settings;
+  std::vector<Lobe*> lobes;
+  std::vector<GpuFunction> functions;
+  for (auto* list : {&result.front, &result.references})
+    for (Lobe& l : *list)
+      if (const auto f = gpu_function(l, s)) {
+        lobes.push_back(&l);
+        functions.push_back(*f);
+      }
+  const GpuTiming timing = s.gpu_timer(functions);
+  if (timing.ps.size() != functions.size()) return "GPU not timed: " + timing.device;
+  for (std::size_t i = 0; i < lobes.size(); ++i) lobes[i]->gpu_ps_per_eval = timing.ps[i];
+  for (Lobe& m : result.front)
+    m.gpu_front = std::isfinite(m.gpu_ps_per_eval) && std::ranges::none_of(result.front, [&](const Lobe& o) {
+      return &o != &m && std::isfinite(o.gpu_ps_per_eval) && o.gpu_ps_per_eval <= m.gpu_ps_per_eval &&
+             objective_error(o, s.objective) < objective_error(m, s.objective);
+    });
+  return fmt::format("GPU: ps per evaluation beyond F = {}'s, a fragment shader over 256² pixels × 64 evaluations, "
+                     "float, on {}", s.variables.front(), timing.device);
+}
+
 // SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
 std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   const Settings& s = result.settings;
@@ -344,6 +400,7 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
       name(result.front, "d");
       name(result.refused, "refused");
       result.spirv_note = count_spirv(result, stop);
+      if (s.gpu_timer && s.measure_cost && !stop()) result.gpu_note = time_on_gpu(result);
     } catch (const Interrupted&) {
       result.cancelled = true;
     }

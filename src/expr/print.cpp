@@ -214,10 +214,24 @@ Fragment cpp_node(const Node& node, Operands operands, const Expression& e) {
   return call("std::" + std::string(function_name(node.op)), operands);
 }
 
+// GLSL's pow(x, y) is undefined for x < 0 (NaN on GPUs), where an integer power is not: an even
+// power is pow(abs(x), k), an odd one x·pow(abs(x), k − 1) (compilers turn small ones into
+// products; abs is free on GPUs). nullopt where the exponent is not a whole number ("2.0").
+std::optional<Fragment> glsl_integer_power(Operands operands) {
+  const std::string& k = operands[1].text;
+  if (k.size() < 3 || !k.ends_with(".0") || k.find_first_not_of("-0123456789", 0) != k.size() - 2) return std::nullopt;
+  const long long power = std::stoll(k.substr(0, k.size() - 2));
+  const std::string& x = operands[0].text;
+  if (power % 2 == 0) return Fragment{fmt::format("pow(abs({}), {})", x, k), kAtom};
+  return Fragment{fmt::format("({}) * pow(abs({}), {}.0)", x, x, power - 1), kProduct};
+}
+
 Fragment glsl_node(const Node& node, Operands operands, const Expression& e) {
   if (is_exact(node)) return glsl_exact(node);
   if (node.op == Op::constant) return signed_number(node.value, glsl_float(std::abs(node.value)));
   if (auto done = common(node, operands, e)) return *done;
+  if (node.op == Op::pow)
+    if (auto power = glsl_integer_power(operands)) return *power;
   // GLSL has neither: the plain forms (float precision hides their cancellation near 0 anyway).
   if (node.op == Op::expm1) return {"(exp(" + operands[0].text + ") - 1.0)", kAtom};
   if (node.op == Op::log1p) return {"log(1.0 + " + operands[0].text + ")", kAtom};

@@ -128,6 +128,29 @@ Chart design_front_chart(const design::Result& r) {
   return chart;
 }
 
+Chart design_gpu_chart(const design::Result& r) {
+  Chart chart;
+  chart.title = fmt::format("On the GPU: designed members against {}", r.settings.target);
+  chart.x = {"GPU cost (ps per evaluation, float)", Scale::log, {}, {}};
+  chart.y = {fmt::format("largest |F − {}| over the domain", r.settings.target), Scale::log, {}, {}};
+  Series front{"front on the GPU", model_colour("design"), {}, {}, Stroke::solid, true, {}};
+  for (const auto& l : r.front) {
+    if (!l.gpu_front || !(l.gpu_ps_per_eval > 0)) continue;
+    if (!front.x.empty()) {  // the staircase, as the CPU's
+      front.x.push_back(l.gpu_ps_per_eval);
+      front.y.push_back(front.y.back());
+    }
+    front.x.push_back(l.gpu_ps_per_eval);
+    front.y.push_back(l.max_abs);
+  }
+  chart.series.push_back(front);
+  for (const auto& l : r.references)
+    if (l.max_abs > 0 && l.gpu_ps_per_eval > 0)
+      chart.series.push_back({l.id, model_colour(l.id), {l.gpu_ps_per_eval}, {l.max_abs}, Stroke::none, true, {l.id}});
+  chart.legend = Legend::top_right;
+  return chart;
+}
+
 Chart design_error_chart(const design::Result& r, const design::Lobe& member) {
   const design::Settings& s = r.settings;
   const bool function = design::is_function_target(s.target);
@@ -211,6 +234,7 @@ std::string design_page(const design::Result& r) {
 <h1>Designed lobes against {0}</h1>
 <p class="lede">{2} over {3} ∈ [{4:g}, {5:g}], objective {6}: {7} of {8} shapes screened in {9:.1f} s{10}. {11}; {15}.</p>
 <figure>{12}</figure>
+{16}
 {13}
 {14}
 <footer><p class="lede">Written by <code>specula design</code>; the files beside this page: front.csv, models.toml,
@@ -223,7 +247,10 @@ design.json, front.svg, front.png. Load the lobes in any command with <code>--mo
                      html_table({"id", "kind", "max |F − target|", "max rel.", "ns/value", "ops", "SPIR-V", "check",
                                  "formula"},
                                 rows, "models"),
-                     members, xml_escape(r.spirv_note));
+                     members, xml_escape(r.spirv_note),
+                     has_points(design_gpu_chart(r))
+                         ? fmt::format("<figure>{}</figure>\n<p class=\"lede\">{}.</p>", to_svg(design_gpu_chart(r)), xml_escape(r.gpu_note))
+                         : std::string());
 }
 
 void write_design_pictures(const design::Result& r, const std::filesystem::path& dir) {
@@ -232,6 +259,7 @@ void write_design_pictures(const design::Result& r, const std::filesystem::path&
     io::write_file_atomically(dir / "front.svg", to_svg(front));
     render::write_png(dir / "front.png", to_image(front), {{"Software", "specula design"}});
   }
+  if (const Chart gpu = design_gpu_chart(r); has_points(gpu)) io::write_file_atomically(dir / "front-gpu.svg", to_svg(gpu));
   io::write_file_atomically(dir / "index.html", design_page(r));
 }
 

@@ -96,8 +96,17 @@ TEST(ToCpp, ExactText) {
   EXPECT_EQ(to_cpp(parse("(-x)^-2")), "std::pow(-x, -2.0)");
 }
 
+// GLSL's pow(x, y) is undefined for x < 0 (NaN on GPUs): a whole power is written so that it is
+// defined for every x; any other power stays pow (the control).
+TEST(ToGlsl, WholePowersAreDefinedForNegativeBases) {
+  EXPECT_EQ(to_glsl(parse("0.5*x^2")), "0.5 * pow(abs(x), 2.0)");
+  EXPECT_EQ(to_glsl(parse("(x - 1)^3")), "(x - 1.0) * pow(abs(x - 1.0), 2.0)");
+  EXPECT_EQ(to_glsl(parse("x^-2")), "pow(abs(x), -2.0)");
+  EXPECT_EQ(to_glsl(parse("x^2.5")), "pow(x, 2.5)");
+  EXPECT_EQ(to_glsl(parse("x^y")), "pow(x, y)");
+}
+
 TEST(ToGlsl, FloatLiterals) {
-  EXPECT_EQ(to_glsl(parse("0.5*x^2")), "0.5 * pow(x, 2.0)");
   EXPECT_EQ(to_glsl(parse("0.1 + 1e-5 + 3e20")), "0.1 + 1.0e-05 + 3.0e+20");
   EXPECT_EQ(to_glsl(parse("min(log(x), max(-y, acos(1)))")), "min(log(x), max(-y, acos(1.0)))");
   EXPECT_EQ(to_glsl(parse("-(-x)")), "-(-x)");

@@ -99,3 +99,39 @@ TEST(RenderGlCli, CompareOnTheGlBackendMatchesTheCpuPanel) {
 
 }  // namespace
 }  // namespace specula::render
+
+namespace specula::render {
+namespace {
+
+// `specula design` times its front and references on the GPU (here llvmpipe) beside the CPU: the
+// front.csv columns gpu_ps_per_eval and gpu_front, the device on stdout, front-gpu.svg. The
+// control: --no-gpu-timing leaves the columns empty and writes no GPU chart. (A search of one
+// shape, timed: about 8 s under the sanitizers.)
+TEST(DesignGpuCli, TimesTheFrontOnTheGpuBesideTheCpu) {
+  TempDir dir;
+  for (const bool gpu : {true, false}) {
+    const auto out = dir / (gpu ? "gpu" : "cpu"), log = dir / "stdout.txt";
+    const int status = std::system(fmt::format("'{}' design --target schlick-weight --ops fma --max-cost 1 -q {} --out '{}' >'{}'",
+                                               SPECULA_CLI, gpu ? "" : "--no-gpu-timing", out.string(), log.string())
+                                       .c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << specula::testing::read_file(log);
+    // The reference `exact`'s row ends with its gpu_ps_per_eval and an empty gpu_front.
+    const std::string csv = specula::testing::read_file(out / "front.csv");
+    const auto start = csv.find("\nexact,") + 1;
+    std::string row = csv.substr(start, csv.find('\n', start) - start);
+    ASSERT_TRUE(row.ends_with(",")) << row;
+    row.pop_back();
+    const std::string gpu_ps = row.substr(row.rfind(',') + 1);
+    EXPECT_EQ(std::filesystem::exists(out / "front-gpu.svg"), gpu);
+    if (gpu) {
+      EXPECT_THAT(specula::testing::read_file(log), HasSubstr("GPU: ps per evaluation"));
+      EXPECT_GT(std::strtod(gpu_ps.c_str(), nullptr), 0) << row;
+    } else {
+      EXPECT_EQ(gpu_ps, "") << row;
+      EXPECT_THAT(specula::testing::read_file(log), Not(HasSubstr("GPU:")));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace specula::render

@@ -152,6 +152,22 @@ struct DefaultRange {
 /// parameters).
 DefaultRange default_range(std::string_view target, const std::vector<std::string>& variables = {"c"});
 
+/// A function for the GPU cost axis: GLSL defining `float specula_term(…)` of `variables` per-pixel
+/// variables and then the parameter (if has_param) at `param`.
+struct GpuFunction {
+  std::string glsl;
+  int variables = 1;
+  bool has_param = false;
+  double param = 0;
+};
+/// What a GPU timer found: picoseconds per evaluation of each function (NaN: not timed), and the
+/// device, or why none (then `ps` is empty).
+struct GpuTiming {
+  std::vector<double> ps;
+  std::string device;
+};
+using GpuTimer = std::function<GpuTiming(const std::vector<GpuFunction>&)>;
+
 struct Settings {
   /// A lobe model (id, "lobe: …" or a model-file id), or a function of c: "expr: FORMULA" or a
   /// Term's id (is_function_target).
@@ -176,6 +192,9 @@ struct Settings {
   /// The members' per-pixel constants rounded to this and adjusted one ulp at a time, their
   /// arithmetic evaluated in it (double: as fitted).
   Precision precision = Precision::f64;
+  /// Times the front and the references on a GPU (the CLI's is made through specula_gl: the GPU,
+  /// or llvmpipe without one); empty: no GPU axis. Used only when measure_cost.
+  GpuTimer gpu_timer;
   const std::atomic<bool>* cancel = nullptr;
 };
 
@@ -202,6 +221,8 @@ struct Lobe {
   /// member had before its constants were rounded.
   double precision_error = NAN;
   std::string precision_note;
+  double gpu_ps_per_eval = NAN;  ///< measured by Settings::gpu_timer, beyond F = its first variable; NaN if not
+  bool gpu_front = false;        ///< members: on the front of GPU cost against error among the front's members
 };
 
 struct Result {
@@ -220,6 +241,7 @@ struct Result {
   bool cancelled = false;
   std::string cost_note;         ///< how the costs were obtained (compiler, or why the model)
   std::string spirv_note;        ///< how the SPIR-V counts were obtained, or why not
+  std::string gpu_note;          ///< the GPU axis: the device it was timed on, or why not
   std::string source;            ///< the design.json it was read from (read_design): merge's messages name it
 };
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "specula/exceptions.h"
 #include "specula/render/image.h"
@@ -25,6 +26,7 @@ class GlError : public InvalidArgument {
 
 class Program;
 class Target;
+struct GlslFunction;
 
 struct ContextInfo {
   std::string platform;  ///< how the display was found, e.g. "Mesa surfaceless" or "EGL device /dev/dri/renderD128"
@@ -55,6 +57,7 @@ class Context {
 
  private:
   friend render::Image draw_full_screen(const Program& program, int width, int height, int tile_side);
+  friend std::vector<double> time_functions(const Context& context, const std::vector<GlslFunction>& functions, int trials);
   /// The colour target of that size, kept for the next draw of the same size; current and bound.
   Target& target(int width, int height) const;
 

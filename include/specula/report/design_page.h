@@ -14,6 +14,10 @@ namespace specula::report {
 /// largest |F − target| (log): the members as a staircase, each reference a labelled point.
 Chart design_front_chart(const design::Result& result);
 
+/// GPU cost (ps per evaluation, log) against the largest |F − target| (log): the members on the
+/// GPU's front as a staircase, each reference timed on the GPU a labelled point.
+Chart design_gpu_chart(const design::Result& result);
+
 /// |F − target| against c for `member` at the range's ends and its middle.
 Chart design_error_chart(const design::Result& result, const design::Lobe& member);
 
