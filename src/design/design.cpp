@@ -399,7 +399,7 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
       result.front = passing_front(std::move(members), result.refused, s, timed, stop);
       name(result.front, "d");
       name(result.refused, "refused");
-      result.spirv_note = count_spirv(result, stop);
+      result.spirv_note = s.measure_cost ? count_spirv(result, stop) : "SPIR-V not counted: no cost measured (--no-timing)";
       if (s.gpu_timer && s.measure_cost && !stop()) result.gpu_note = time_on_gpu(result);
     } catch (const Interrupted&) {
       result.cancelled = true;

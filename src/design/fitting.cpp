@@ -172,13 +172,7 @@ Samples function_rows(const Settings& s, double p) {
     for (std::size_t v = 0, rest = r; v < k; ++v, rest /= values.size()) out.x[v].push_back(values[rest % values.size()]);
   std::vector<std::vector<double>> columns = out.x;
   if (!s.param.empty()) columns.emplace_back(rows, p);
-  const auto target = target_function(s);
-  std::vector<double> point(columns.size());
-  out.value.resize(rows);
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t v = 0; v < columns.size(); ++v) point[v] = columns[v][r];
-    out.value[r] = target(point);
-  }
+  out.value = target_values(s, columns);
   return out;
 }
 

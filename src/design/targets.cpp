@@ -135,6 +135,23 @@ std::function<double(std::span<const double>)> target_function(const Settings& s
   return [e](std::span<const double> x) { return expr::evaluate(*e, x); };
 }
 
+std::vector<double> target_values(const Settings& s, const std::vector<std::vector<double>>& columns) {
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  std::vector<double> out(rows);
+  if (!is_tabulated(s.target)) {
+    std::vector<std::span<const double>> spans(columns.begin(), columns.end());
+    expr::evaluate_batch(function_expression(s), spans, out);
+    return out;
+  }
+  const auto target = target_function(s);
+  std::vector<double> point(columns.size());
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t v = 0; v < columns.size(); ++v) point[v] = columns[v][r];
+    out[r] = target(point);
+  }
+  return out;
+}
+
 std::span<const Term> terms() { return kTerms; }
 std::span<const TermReference> term_references() { return kReferences; }
 

@@ -85,12 +85,7 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t v = 0, rest = r; v < k; ++v, rest /= axis.size()) columns[v].push_back(axis[rest % axis.size()]);
   if (!s.param.empty()) columns.emplace_back(rows, p);
-  const std::vector<double> fv = evaluate_rows(f, columns);
-  std::vector<double> tv(rows), at_row(columns.size());
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t v = 0; v < columns.size(); ++v) at_row[v] = columns[v][r];
-    tv[r] = t(at_row);
-  }
+  const std::vector<double> fv = evaluate_rows(f, columns), tv = target_values(s, columns);
   FunctionError out;
   for (std::size_t r = 0; r < rows; ++r)
     if (!std::isfinite(fv[r])) {

@@ -270,7 +270,7 @@ TEST_F(Cli, DesignRefusesBadSettingsInOneLineWritingNothing) {
 
 // The page of a function target plots |F − target| against its first variable, the largest over
 // the others, and shows each member's GLSL function (a function is not a lobe: no lobe model is
-// made of it). Cost 1, no timing: about 3 s under the sanitizers.
+// made of it). Cost 1, no timing: about 8 s under the sanitizers (the two-variable measurement).
 TEST_F(Cli, DesignWritesTheFrontAndPageOfFunctionTargets) {
   for (const std::string target : {"smith-g2-ggx", "schlick-weight"}) {
     const fs::path out = work() / target;

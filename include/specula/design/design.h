@@ -305,6 +305,9 @@ expr::Expression function_expression(const Settings& s, std::string_view formula
 /// range parameter (if any) — its expression evaluated (function_expression), or a tabulated term
 /// interpolated. Valid while `s` lives.
 std::function<double(std::span<const double>)> target_function(const Settings& s);
+/// The same at many points at once: columns[v][r] is variable v (then the parameter) at row r
+/// (an expression evaluated in batches, as expr::evaluate_batch).
+std::vector<double> target_values(const Settings& s, const std::vector<std::vector<double>>& columns);
 
 /// Whether l is a formula (every member, and the evaluable references: the spherical Gaussian,
 /// the engines' approximations of a term) rather than a built-in model's id.
