@@ -41,9 +41,10 @@ double log_ns(const Result& r) {
   return NAN;
 }
 
-// A member's normalization: its k(p) in closed form, else "quadrature"; empty for references.
+// A member's normalization: its k(p) in closed form, else "quadrature"; empty for references and
+// for a function's members (check "-": not lobes, nothing to normalize).
 std::string normalization_of(const Lobe& l) {
-  if (l.reference) return {};
+  if (l.reference || l.check == "-") return {};
   return l.k_formula.empty() ? "quadrature" : l.k_formula;
 }
 

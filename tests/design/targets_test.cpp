@@ -9,6 +9,7 @@
 #include "specula/brdf/fresnel.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/design/design.h"
+#include "specula/design/output.h"
 #include "specula/expr/expr.h"
 #include "design/fitting.h"
 #include "design/laws.h"
@@ -104,6 +105,10 @@ TEST(FunctionTargets, AnExpressionWithoutParametersIsFoundAndItsClaimsHold) {
     return w;
   }());
   EXPECT_NEAR(reference(weight, "unreal-exp2").max_abs, 0.00377, 0.00005);
+  // A function's member has no normalization: front.csv's column is empty (a lobe's is not).
+  const std::string csv = front_csv(weight);
+  const auto row = csv.substr(csv.find("\nschlick-weight-d1,") + 1);
+  EXPECT_NE(row.substr(0, row.find('\n')).find(",-,,"), std::string::npos) << row.substr(0, row.find('\n'));
 }
 
 // Two per-pixel variables: the height-correlated Smith G₂ of GGX over (NoV, NoL) ∈ (0, 1]² and
