@@ -259,7 +259,8 @@ std::optional<GpuFunction> gpu_function(const Lobe& l, const Settings& s) {
                          expr::to_glsl(function_expression(at_p, l.formula)));
     return f;
   }
-  // The model's `float specula_<id>_lobe(float c[, float n])`.
+  // The model's lobe function, `float specula_<family or id>_lobe(float c[, float n])` (a family's
+  // is named after the family: phong's is specula_power_lobe).
   const std::string model = glsl::model_glsl(lobe_at(l, s)(p));
   const std::size_t at = model.find("_lobe(float c");
   const std::size_t start = model.rfind("float specula_", at);
@@ -348,10 +349,13 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
   if (s.precision != Precision::f64 && !result.cancelled) {
     tell("rounding constants", 0, static_cast<std::int64_t>(members.size()), nullptr);
     const std::vector<Samples> rows = samples_over(s, kFineGrid);
-    tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t i) {
-      if (stop()) return;
-      round_member(members[i], rows, s, objective_error(members[i], s.objective));
-      set_errors(members[i], domain_error(members[i], s, stop));
+    tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);  // the search's threads, no more
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, members.size(), [&](std::size_t i) {
+        if (stop()) return;
+        round_member(members[i], rows, s, objective_error(members[i], s.objective));
+        set_errors(members[i], domain_error(members[i], s, stop));
+      });
     });
     if (stop()) result.cancelled = true;
     std::erase_if(members, [&](const Lobe& m) { return !std::isfinite(objective_error(m, s.objective)); });

@@ -223,7 +223,6 @@ fit::Data joint_data(std::span<const Samples> grid, const Settings& s) {
 // Whether `lobe` is finite on the first grid value's rows at parameter values between and beyond
 // the grid's (a refit may move a law's pole into the range).
 bool finite_between(const expr::Expression& lobe, std::span<const Samples> grid, const Settings& s) {
-  constexpr std::size_t kDenseParams = 1025;
   std::vector<std::vector<double>> columns = grid.front().x;
   const std::size_t rows = grid.front().value.size();
   columns.emplace_back(rows, 0.0);

@@ -24,6 +24,10 @@ struct Samples {
 /// e at each row of `columns` (its variables' values, one column each).
 std::vector<double> evaluate_rows(const expr::Expression& e, const std::vector<std::vector<double>>& columns);
 
+/// Parameter values over the range, between the grids' and beyond them, where a law (and a lobe
+/// with laws) must be finite too.
+inline constexpr std::size_t kDenseParams = 1025;
+
 /// `count` parameter values over [lo, hi], log-spaced or even as log_spaced(lo, hi) says.
 std::vector<double> param_grid(double lo, double hi, std::size_t count);
 

@@ -41,9 +41,6 @@ double law_at(const expr::Expression& law, double p) {
   return expr::evaluate(law, x);
 }
 
-// Parameter values between and beyond the grid's, where a law must be finite too.
-constexpr std::size_t kDenseParams = 1025;
-
 // Whether `law` is finite over the whole range and stays near its fitted values: within their
 // span again beyond their smallest and largest (a pole between two grid values is neither).
 bool law_holds(const expr::Expression& law, std::span<const double> fitted, const Settings& s) {

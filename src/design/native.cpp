@@ -1,7 +1,6 @@
 #include "native.h"
 
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -24,11 +23,13 @@ using expr::Op;
 namespace {
 
 
-// A value of the formula while it is written out: a uniform (a scalar C++ expression in the
-// parameter p, computed once per call) or a vector expression in x (the cosine's lanes).
+// A value of the formula while it is written out: a uniform (a scalar C++ expression of numbers
+// and the parameter p) or a vector expression in x (the cosine's lanes).
 struct Value {
-  Value(bool is_uniform, std::string value_text) : uniform(is_uniform), text(std::move(value_text)) {}
+  Value(bool is_uniform, std::string value_text, bool reads = false)
+      : uniform(is_uniform), reads_param(reads), text(std::move(value_text)) {}
   bool uniform = true;
+  bool reads_param = false;  // a uniform of p (computed once per material), else of numbers alone
   std::string text;
   std::string mul_left, mul_right;  // set when the vector text is hn::Mul(left, right)
 };
@@ -40,38 +41,36 @@ std::string literal(double v) {
   return text;
 }
 
-// Whether a uniform's text names the parameter p (a word of its own: not the p of std::pow).
-bool reads_param(std::string_view text) {
-  const auto word = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':'; };
-  for (std::size_t i = text.find('p'); i != std::string_view::npos; i = text.find('p', i + 1))
-    if ((i == 0 || !word(text[i - 1])) && (i + 1 == text.size() || !word(text[i + 1]))) return true;
-  return false;
-}
-
 std::string scalar_call(Op op, const std::string& a) {
   return fmt::format("std::{}({})", expr::function_name(op), a);
 }
 
-Value scalar(Op op, const Value& a, const Value* b) {
+std::string scalar_text(Op op, const Value& a, const Value* b) {
   switch (op) {
-    case Op::add: return {true, "(" + a.text + " + " + b->text + ")"};
-    case Op::sub: return {true, "(" + a.text + " - " + b->text + ")"};
-    case Op::mul: return {true, "(" + a.text + " * " + b->text + ")"};
-    case Op::div: return {true, "(" + a.text + " / " + b->text + ")"};
-    case Op::pow: return {true, "std::pow(" + a.text + ", " + b->text + ")"};
-    case Op::min: return {true, "std::fmin(" + a.text + ", " + b->text + ")"};
-    case Op::max: return {true, "std::fmax(" + a.text + ", " + b->text + ")"};
-    case Op::neg: return {true, "(-" + a.text + ")"};
+    case Op::add: return "(" + a.text + " + " + b->text + ")";
+    case Op::sub: return "(" + a.text + " - " + b->text + ")";
+    case Op::mul: return "(" + a.text + " * " + b->text + ")";
+    case Op::div: return "(" + a.text + " / " + b->text + ")";
+    case Op::pow: return "std::pow(" + a.text + ", " + b->text + ")";
+    case Op::min: return "std::fmin(" + a.text + ", " + b->text + ")";
+    case Op::max: return "std::fmax(" + a.text + ", " + b->text + ")";
+    case Op::neg: return "(-" + a.text + ")";
     case Op::constant:
     case Op::variable: break;
-    default: return {true, scalar_call(op, a.text)};
+    default: return scalar_call(op, a.text);
   }
   unreachable();
+}
+
+Value scalar(Op op, const Value& a, const Value* b) {
+  return {true, scalar_text(op, a, b), a.reads_param || (b && b->reads_param)};
 }
 
 class Writer {
  public:
   Writer(std::size_t index, std::size_t variables) : index_(index), variables_(variables) {}
+
+  std::size_t uniform_count() const { return uniforms_.size(); }
 
   // The function's text; `operations` counts its vector operations.
   std::string function(const expr::Expression& formula, int& operations) {
@@ -81,7 +80,7 @@ class Writer {
         case 0:
           stack.push_back(n.op == Op::constant  ? Value{true, literal(n.value)}
                           : n.var < variables_ ? Value{false, variables_ == 1 ? std::string("x") : fmt::format("x{}", n.var)}
-                                                : Value{true, "p"});
+                                                : Value{true, "p", true});
           break;
         case 1: {
           Value a = std::move(stack.back());
@@ -131,7 +130,7 @@ class Writer {
   // of the material's uniforms (each distinct text once).
   std::string vector_of(const Value& v) {
     if (!v.uniform) return v.text;
-    if (!reads_param(v.text)) return fmt::format("hn::Set(d, static_cast<float>({}))", v.text);
+    if (!v.reads_param) return fmt::format("hn::Set(d, static_cast<float>({}))", v.text);
     const auto found = std::ranges::find(uniforms_, v.text);
     if (found != uniforms_.end()) return fmt::format("u{}", found - uniforms_.begin());
     uniforms_.push_back(v.text);
@@ -261,9 +260,6 @@ class Writer {
 
   std::size_t index_, variables_;
   int operations_ = 0;
- public:
-  std::size_t uniform_count() const { return uniforms_.size(); }
- private:
   std::vector<std::string> uniforms_;
 };
 

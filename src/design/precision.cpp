@@ -23,14 +23,23 @@ double round_to_half(double x) {
   return std::abs(rounded) > 65504 ? std::copysign(INFINITY, x) : rounded;
 }
 
-// The objective's largest error of `evaluate` on the rows, the inputs rounded as a shader gets them.
+// The rows with their inputs rounded as a shader gets them.
+std::vector<Samples> rounded_inputs(std::span<const Samples> rows, Precision precision) {
+  std::vector<Samples> out(rows.begin(), rows.end());
+  for (Samples& g : out)
+    for (auto& column : g.x)
+      for (double& x : column) x = round_to(x, precision);
+  return out;
+}
+
+// The objective's largest error of `evaluate` on the rows.
 double rows_error(const RoundedEvaluator& evaluate, std::span<const Samples> rows, const Settings& s) {
   std::vector<double> point(s.variables.size() + (s.param.empty() ? 0 : 1));
   double worst = 0;
   for (const Samples& g : rows) {
     if (!s.param.empty()) point.back() = g.param;
     for (std::size_t r = 0; r < g.value.size(); ++r) {
-      for (std::size_t v = 0; v < s.variables.size(); ++v) point[v] = round_to(g.x[v][r], s.precision);
+      for (std::size_t v = 0; v < s.variables.size(); ++v) point[v] = g.x[v][r];
       const double d = std::abs(evaluate(point) - g.value[r]);
       const double e = s.objective == Objective::max_rel ? d / g.value[r] : d;
       if (!(e <= worst)) worst = std::isnan(e) ? INFINITY : e;
@@ -67,29 +76,29 @@ double next_in(double x, int direction, Precision precision) {
 }
 
 RoundedEvaluator::RoundedEvaluator(const expr::Expression& e, std::size_t per_pixel_variables, Precision precision)
-    : e_(e), per_pixel_(per_pixel_variables), precision_(precision) {
+    : nodes_(e.nodes().begin(), e.nodes().end()), variables_(e.variables()), precision_(precision),
+      stack_(nodes_.size()) {
   // A uniform reads the parameter and no per-pixel variable; numbers alone are literals.
-  const auto& nodes = e.nodes();
+  const auto& nodes = nodes_;
   std::vector<std::size_t> open;  // the nodes whose consumer is not read yet
   std::vector<std::size_t> parent(nodes.size(), nodes.size());
-  std::vector<bool> pixel(nodes.size()), param(nodes.size());
-  uniform_.resize(nodes.size());
+  std::vector<bool> pixel(nodes.size()), param(nodes.size()), uniform(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    pixel[i] = nodes[i].op == Op::variable && nodes[i].var < per_pixel_;
-    param[i] = nodes[i].op == Op::variable && nodes[i].var >= per_pixel_;
+    pixel[i] = nodes[i].op == Op::variable && nodes[i].var < per_pixel_variables;
+    param[i] = nodes[i].op == Op::variable && nodes[i].var >= per_pixel_variables;
     for (int k = 0; k < expr::arity(nodes[i].op); ++k) {
       pixel[i] = pixel[i] || pixel[open.back()];
       param[i] = param[i] || param[open.back()];
       parent[open.back()] = i;
       open.pop_back();
     }
-    uniform_[i] = param[i] && !pixel[i];
+    uniform[i] = param[i] && !pixel[i];
     open.push_back(i);
   }
   // Inside a uniform (below its top): computed in double with it. Parents come after children.
   std::vector<bool> inside(nodes.size());
   for (std::size_t i = nodes.size(); i-- > 0;)
-    inside[i] = parent[i] < nodes.size() && (uniform_[parent[i]] || inside[parent[i]]);
+    inside[i] = parent[i] < nodes.size() && (uniform[parent[i]] || inside[parent[i]]);
   round_here_.resize(nodes.size());
   literal_.resize(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -103,8 +112,8 @@ RoundedEvaluator::RoundedEvaluator(const expr::Expression& e, std::size_t per_pi
 }
 
 double RoundedEvaluator::operator()(std::span<const double> point) const {
-  const auto& nodes = e_.nodes();
-  std::vector<double> stack(nodes.size());
+  const auto& nodes = nodes_;
+  std::vector<double>& stack = stack_;
   std::size_t top = 0;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const Node& n = nodes[i];
@@ -124,32 +133,28 @@ double RoundedEvaluator::operator()(std::span<const double> point) const {
 
 std::vector<std::size_t> RoundedEvaluator::literals() const {
   std::vector<std::size_t> out;
-  const auto& nodes = e_.nodes();
-  for (std::size_t i = 0; i < nodes.size(); ++i)
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
     if (literal_[i]) out.push_back(i);
   return out;
 }
 
 void round_member(Lobe& l, std::span<const Samples> rows, const Settings& s, double claim) {
-  const expr::Expression parsed = function_expression(s, l.formula);
-  std::vector<Node> nodes(parsed.nodes().begin(), parsed.nodes().end());
-  const std::vector<std::string> names = formula_variables(s);
-  const auto error_of = [&](const std::vector<Node>& n) {
-    return rows_error(RoundedEvaluator(expr::Expression(n, names), s.variables.size(), s.precision), rows, s);
-  };
-  const std::vector<std::size_t> literals = RoundedEvaluator(expr::Expression(nodes, names), s.variables.size(), s.precision).literals();
-  for (std::size_t i : literals) nodes[i].value = round_to(nodes[i].value, s.precision);
-  double best = error_of(nodes);
+  RoundedEvaluator member(function_expression(s, l.formula), s.variables.size(), s.precision);
+  const std::vector<Samples> inputs = rounded_inputs(rows, s.precision);
+  const auto error = [&] { return rows_error(member, inputs, s); };
+  const std::vector<std::size_t> literals = member.literals();
+  for (std::size_t i : literals) member.set_literal(i, round_to(member.literal(i), s.precision));
+  double best = error();
   for (int pass = 0; pass < kPasses; ++pass) {
     bool moved = false;
     for (std::size_t i : literals)
       for (int direction : {1, -1})
         for (int step = 0; step < kStepsPerPass; ++step) {
-          const double kept = nodes[i].value;
-          nodes[i].value = next_in(kept, direction, s.precision);
-          const double e = error_of(nodes);
+          const double kept = member.literal(i);
+          member.set_literal(i, next_in(kept, direction, s.precision));
+          const double e = error();
           if (!(e < best)) {
-            nodes[i].value = kept;
+            member.set_literal(i, kept);
             break;
           }
           best = e;
@@ -157,7 +162,7 @@ void round_member(Lobe& l, std::span<const Samples> rows, const Settings& s, dou
         }
     if (!moved) break;
   }
-  l.formula = expr::to_infix(expr::Expression(std::move(nodes), names));
+  l.formula = expr::to_infix(member.expression());
   l.precision_error = best;
   l.precision_note = best > claim * (1 + 1e-9)
                          ? fmt::format("in {} its largest error on the fits' rows is {:.6g}, past the {:.6g} it had before "

@@ -6,6 +6,7 @@
 // the parameter's subexpressions — a material's uniforms — computed in double and rounded once),
 // and its error measured again.
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fitting.h"
@@ -21,6 +22,7 @@ double round_to(double x, Precision precision);
 double next_in(double x, int direction, Precision precision);
 
 /// `e` (variables: the per-pixel ones, then the range parameter if any) evaluated in `precision`.
+/// One evaluator per thread: it keeps its stack between calls.
 class RoundedEvaluator {
  public:
   RoundedEvaluator(const expr::Expression& e, std::size_t per_pixel_variables, Precision precision);
@@ -28,14 +30,19 @@ class RoundedEvaluator {
   /// The fitted numbers a shader carries as literals (node indices): plain constants that are not
   /// integers, not a power's exponent, and not inside the parameter's subexpressions.
   std::vector<std::size_t> literals() const;
+  /// Literal `node`'s value, and a new one for it (the structure, and so the literals, stay).
+  double literal(std::size_t node) const { return nodes_[node].value; }
+  void set_literal(std::size_t node, double value) { nodes_[node].value = value; }
+  /// The expression with the literals as they are now.
+  expr::Expression expression() const { return expr::Expression(nodes_, variables_); }
 
  private:
-  expr::Expression e_;
-  std::size_t per_pixel_;
+  std::vector<expr::Node> nodes_;
+  std::vector<std::string> variables_;
   std::vector<bool> round_here_;  // per node: rounded after it (all but a uniform's inner nodes)
-  std::vector<bool> uniform_;     // per node: reads the parameter and no per-pixel variable
   std::vector<bool> literal_;     // per node: a fitted number outside the uniforms
   Precision precision_;
+  mutable std::vector<double> stack_;
 };
 
 /// Member l rounded to s.precision (not f64): its literals rounded, then each moved one ulp at a

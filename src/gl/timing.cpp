@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -70,20 +71,26 @@ double seconds_per_draw(const Program& program, double param) {
 std::vector<double> time_functions(const Context& context, const std::vector<GlslFunction>& functions, int trials) {
   context.make_current();
   (void)context.target(kSide, kSide);  // current and bound
-  std::vector<std::unique_ptr<Program>> programs, baselines;
+  // One baseline program per signature (variables, parameter), timed beside each function.
+  std::map<std::pair<int, bool>, std::unique_ptr<Program>> baseline_of;
+  std::vector<std::unique_ptr<Program>> programs;
+  std::vector<const Program*> baselines;
   for (const GlslFunction& f : functions) {
-    GlslFunction first = f;
-    std::string parameters;
-    for (int v = 0; v < f.variables; ++v) parameters += fmt::format("{}float v{}", v ? ", " : "", v);
-    if (f.has_param) parameters += ", float p";
-    first.glsl = fmt::format("float specula_term({}) {{ return v0; }}\n", parameters);
+    auto& shared = baseline_of[{f.variables, f.has_param}];
+    if (!shared) {
+      GlslFunction first = f;
+      std::string parameters;
+      for (int v = 0; v < f.variables; ++v) parameters += fmt::format("{}float v{}", v ? ", " : "", v);
+      if (f.has_param) parameters += ", float p";
+      first.glsl = fmt::format("float specula_term({}) {{ return v0; }}\n", parameters);
+      shared = std::make_unique<Program>(context, kVertex, fragment_shader(first));
+    }
     try {
       programs.push_back(std::make_unique<Program>(context, kVertex, fragment_shader(f)));
-      baselines.push_back(std::make_unique<Program>(context, kVertex, fragment_shader(first)));
     } catch (const GlError&) {
       programs.push_back(nullptr);
-      baselines.push_back(nullptr);
     }
+    baselines.push_back(shared.get());
   }
   std::vector<double> fastest(functions.size(), INFINITY), baseline(functions.size(), INFINITY);
   for (int trial = 0; trial < trials; ++trial)

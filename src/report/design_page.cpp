@@ -131,22 +131,25 @@ Chart design_front_chart(const design::Result& r) {
 Chart design_gpu_chart(const design::Result& r) {
   Chart chart;
   chart.title = fmt::format("On the GPU: designed members against {}", r.settings.target);
-  chart.x = {"GPU cost (ps per evaluation, float)", Scale::log, {}, {}};
+  // A time at or below the baseline's (0: within the timing's noise) is drawn at 0.1 ps.
+  static constexpr double kFloor = 0.1;
+  const auto x_of = [](const design::Lobe& l) { return std::max(l.gpu_ps_per_eval, kFloor); };
+  chart.x = {"GPU cost (ps per evaluation, float; 0.1: within the timing's noise)", Scale::log, {}, {}};
   chart.y = {fmt::format("largest |F − {}| over the domain", r.settings.target), Scale::log, {}, {}};
   Series front{"front on the GPU", model_colour("design"), {}, {}, Stroke::solid, true, {}};
   for (const auto& l : r.front) {
-    if (!l.gpu_front || !(l.gpu_ps_per_eval > 0)) continue;
+    if (!l.gpu_front || !std::isfinite(l.gpu_ps_per_eval)) continue;
     if (!front.x.empty()) {  // the staircase, as the CPU's
-      front.x.push_back(l.gpu_ps_per_eval);
+      front.x.push_back(x_of(l));
       front.y.push_back(front.y.back());
     }
-    front.x.push_back(l.gpu_ps_per_eval);
+    front.x.push_back(x_of(l));
     front.y.push_back(l.max_abs);
   }
   chart.series.push_back(front);
   for (const auto& l : r.references)
-    if (l.max_abs > 0 && l.gpu_ps_per_eval > 0)
-      chart.series.push_back({l.id, model_colour(l.id), {l.gpu_ps_per_eval}, {l.max_abs}, Stroke::none, true, {l.id}});
+    if (l.max_abs > 0 && std::isfinite(l.gpu_ps_per_eval))
+      chart.series.push_back({l.id, model_colour(l.id), {x_of(l)}, {l.max_abs}, Stroke::none, true, {l.id}});
   chart.legend = Legend::top_right;
   return chart;
 }

@@ -290,23 +290,36 @@ TEST(FunctionTargets, TheSplitSumTermsAreTheCubaturesWithinTheirStatedError) {
   Settings a = small("env-brdf-a-ggx"), b = small("env-brdf-b-ggx");
   const auto table_a = target_function(a), table_b = target_function(b);
   double corner = 0, elsewhere = 0, swapped = 0, sum = 0;
-  for (int i = 0; i < 24; ++i) {
-    const double mu = std::pow((i % 6 + 0.37) / 6, 2), r = std::pow((i / 6 + 0.61) / 4, 1.5);  // off the grid's nodes
+  std::vector<std::pair<double, double>> points{{3e-4, 0.02}, {1.3e-3, 0.033}, {6e-4, 0.011}};  // the corner's
+  for (int i = 0; i < 24; ++i) points.emplace_back(std::pow((i % 6 + 0.37) / 6, 2), std::pow((i / 6 + 0.61) / 4, 1.5));
+  for (const auto& [mu, r] : points) {  // off the grid's nodes
     const double x[] = {mu, r};
     const double exact_a = direct("ggx-schlick", {{"f0", 1}, {"f90", 0}}, mu, r);
     const double exact_b = direct("ggx-schlick", {{"f0", 0}, {"f90", 1}}, mu, r);
     const double e = std::max(std::abs(table_a(x) - exact_a), std::abs(table_b(x) - exact_b));
     (mu < 0.002 && r < 0.04 ? corner : elsewhere) = std::max(mu < 0.002 && r < 0.04 ? corner : elsewhere, e);
     swapped = std::max(swapped, std::abs(table_a(x) - exact_b));
-    sum = std::max(sum, std::abs(table_a(x) + table_b(x) - direct("ggx", {{"f0", 1}}, mu, r)));
+    if (!(mu < 0.002 && r < 0.04)) sum = std::max(sum, std::abs(table_a(x) + table_b(x) - direct("ggx", {{"f0", 1}}, mu, r)));
   }
+  EXPECT_GT(corner, 0);  // the corner was visited
   EXPECT_LT(corner, 2e-3);
   EXPECT_LT(elsewhere, 2e-4);
   EXPECT_LT(sum, 4e-4);
   EXPECT_GT(swapped, 0.1);
+  // Karis's EnvBRDFApprox B against the cubature on a grid (0.1631 at μ = 10⁻³, r = 0): the
+  // design's measure of it, against the table, is that within the table's 2e-3.
+  const auto lazarov_b = [](double mu, double r) {
+    const double a004 = std::min((1 - r) * (1 - r), std::exp2(-9.28 * mu)) * (1 - r) + 0.0425 - 0.0275 * r;
+    return 1.04 * a004 - 0.04 + 0.022 * r;
+  };
+  double dense = 0;
+  for (double mu : {1e-4, 1e-3, 0.01, 0.1, 0.5, 1.0})
+    for (int j = 0; j <= 10; ++j)
+      dense = std::max(dense, std::abs(lazarov_b(mu, j / 10.0) - direct("ggx-schlick", {{"f0", 0}, {"f90", 1}}, mu, j / 10.0)));
+  EXPECT_NEAR(dense, 0.163, 1e-3);
   b.max_cost = 1;
   const Result r = design(b);
-  EXPECT_NEAR(reference(r, "lazarov").max_abs, 0.163, 2e-3);
+  EXPECT_NEAR(reference(r, "lazarov").max_abs, dense, 2e-3);
 }
 
 TEST(FunctionTargets, BadTargetsAreRefusedInOneLine) {
