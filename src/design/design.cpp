@@ -21,6 +21,7 @@
 #include "precision.h"
 #include "native.h"
 #include "process.h"
+#include "seeds.h"
 #include "shapes.h"
 #include "specula/catalogue/catalogue.h"
 #include "specula/glsl/glsl.h"
@@ -750,7 +751,13 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
 
   // 2. The promising ones on the fine grid, then laws for their constants and the whole domain;
   // with both objectives, each is fitted once for each (the front then holds either).
-  const std::vector<std::size_t> candidates = promising(all, screened);
+  // The engines' forms refitted first (reference_seeds), then the screening's most promising.
+  std::vector<Shape> seeds;
+  for (Seed& seed : reference_seeds(s)) seeds.push_back(std::move(seed.shape));
+  std::vector<const Shape*> candidates;
+  for (const Shape& seed : seeds) candidates.push_back(&seed);
+  for (const std::size_t i : promising(all, screened))
+    if (candidates.size() < kMaxCandidates) candidates.push_back(&all[i]);
   std::vector<Settings> fits;
   for (const Objective o : {Objective::max_abs, Objective::max_rel})
     if (s.objective == o || s.objective == Objective::both) {
@@ -772,7 +779,7 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
       const std::size_t fit = i % fits.size();
       std::optional<Lobe> lobe;
       try {
-        lobe = finished_lobe(all[candidates[i / fits.size()]], fine[fit], fits[fit], stop);
+        lobe = finished_lobe(*candidates[i / fits.size()], fine[fit], fits[fit], stop);
       } catch (const Interrupted&) {
         return;  // a stop: the lobes finished so far are the result
       }

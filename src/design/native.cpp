@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <unistd.h>
+#include <unordered_set>
 
 #include "process.h"
 #include "specula/exceptions.h"
@@ -149,14 +150,15 @@ class Writer {
     return out;
   }
 
+  // An operation on lanes, counted once however often it appears (the compiler computes it once).
   Value vector(std::string text) {
-    ++operations_;
+    if (counted_.insert(text).second) ++operations_;
     return {false, std::move(text)};
   }
 
   // An FMA in place of the product it absorbs (counted already).
   Value fused(std::string text) {
-    --operations_;
+    if (!counted_.contains(text)) --operations_;
     return vector(std::move(text));
   }
 
@@ -260,6 +262,7 @@ class Writer {
 
   std::size_t index_, variables_;
   int operations_ = 0;
+  std::unordered_set<std::string> counted_;  // the operations counted
   std::vector<std::string> uniforms_;
 };
 

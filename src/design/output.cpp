@@ -228,8 +228,8 @@ class DesignReader {
     if (!(l.argmax_param >= s.lo && l.argmax_param <= s.hi))
       fail(fmt::format("{}'argmax_param'", prefix), fmt::format("must be in the range [{}, {}]", s.lo, s.hi));
     const Json& cost = value(m, prefix, "model_cost");
-    if (!cost.is_number_integer() || cost.get<double>() < 0 || cost.get<double>() > s.max_cost)
-      fail(fmt::format("{}'model_cost'", prefix), fmt::format("must be an integer in [0, max_cost = {}]", s.max_cost));
+    if (!cost.is_number_integer() || cost.get<double>() < 0 || cost.get<double>() > Ranges::member_cost)
+      fail(fmt::format("{}'model_cost'", prefix), fmt::format("must be an integer in [0, {}]", Ranges::member_cost));
     l.model_cost = cost.get<int>();
     parsed(fmt::format("{}'formula':", prefix), [&] {
       (void)expr::parse(l.formula, formula_variables(s));     // a formula in the variables and the parameter

@@ -55,7 +55,8 @@ Shape unary(const Shape& x, Step step, int cost) {
     case Step::leaf:
     case Step::product:
     case Step::sum:
-    case Step::quotient: throw std::logic_error("not a unary step");
+    case Step::quotient:
+    case Step::combination: throw std::logic_error("not a unary step");
   }
   s.step = step;
   s.cost = x.cost + cost;
@@ -64,14 +65,17 @@ Shape unary(const Shape& x, Step step, int cost) {
 }
 
 Shape binary(const Shape& x, const Shape& y, Step step, int cost) {
+  const bool combination = step == Step::combination;
   Shape s;
   s.nodes = x.nodes;
+  if (combination) s.nodes.insert(s.nodes.end(), {constant(1), op(Op::mul)});
   s.nodes.insert(s.nodes.end(), y.nodes.begin(), y.nodes.end());
-  s.nodes.push_back(op(step == Step::product ? Op::mul : step == Step::sum ? Op::add : Op::div));
-  s.constants = x.constants + y.constants;
+  if (combination) s.nodes.insert(s.nodes.end(), {constant(1), op(Op::mul)});
+  s.nodes.push_back(op(step == Step::product ? Op::mul : step == Step::quotient ? Op::div : Op::add));
+  s.constants = x.constants + y.constants + (combination ? 2 : 0);
   s.step = step;
   s.cost = x.cost + y.cost + cost;
-  s.nonnegative = x.nonnegative && y.nonnegative;
+  s.nonnegative = !combination && x.nonnegative && y.nonnegative;
   return s;
 }
 
@@ -87,7 +91,8 @@ bool worth_applying(Step step, const Shape& x) {
     case Step::leaf:
     case Step::product:
     case Step::sum:
-    case Step::quotient: return true;
+    case Step::quotient:
+    case Step::combination: return true;
   }
   return true;
 }
@@ -106,7 +111,22 @@ struct BinaryStep {
 };
 constexpr BinaryStep kBinary[] = {{Operation::mul, Step::product, true},
                                   {Operation::add, Step::sum, true},
-                                  {Operation::div, Step::quotient, false}};
+                                  {Operation::div, Step::quotient, false},
+                                  {Operation::fma, Step::combination, true}};
+
+// The step's cost, or 0 where `operations` lacks what it needs (a combination: an fma and a mul).
+int binary_cost(const BinaryStep& b, const std::function<bool(Operation)>& allowed) {
+  if (!allowed(b.operation)) return 0;
+  if (b.step != Step::combination) return operation_cost(b.operation);
+  return allowed(Operation::mul) ? operation_cost(Operation::fma) + operation_cost(Operation::mul) : 0;
+}
+
+// Whether the binary step on x and y is taken: a combination a·x + b·y only of shapes without
+// free constants (a linear model in computed features: with constants in x or y it would multiply
+// the shapes without adding to what they compute, a·(px + q) + b·y being the affine map of a·x + b·y).
+bool worth_joining(Step step, const Shape& x, const Shape& y) {
+  return step != Step::combination || (x.constants == 0 && y.constants == 0);
+}
 
 }  // namespace
 
@@ -158,14 +178,15 @@ std::vector<Shape> enumerate_shapes(std::span<const Operation> operations, int m
         if (worth_applying(u.step, all[x])) add(unary(all[x], u.step, step_cost));
     }
     for (const auto& b : kBinary) {
-      const int step_cost = operation_cost(b.operation);
-      if (!allowed(b.operation)) continue;
+      const int step_cost = binary_cost(b, allowed);
+      if (step_cost == 0) continue;
       for (int left = 0; left <= cost - step_cost; ++left)
         for (const std::size_t x : shapes(left, kMaxShapeConstants))
           for (const std::size_t y : shapes(cost - step_cost - left, kMaxShapeConstants - all[x].constants)) {
             if (full()) return all;
             if (b.commutative && !(all[x].key < all[y].key)) continue;  // x·y once; x·x is the square
             if (b.step == Step::quotient && all[x].key == all[y].key) continue;
+            if (!worth_joining(b.step, all[x], all[y])) continue;
             add(binary(all[x], all[y], b.step, step_cost));
           }
     }

@@ -23,8 +23,8 @@ struct Shape {
   std::string key;       ///< to_infix with every free constant printed as "k"
   int cost = 0;          ///< the cost model's units (operation_cost)
   int constants = 0;     ///< free constants
-  /// The last step that built it.
-  enum class Step { leaf, affine, square, clamp, sqrt, exp, log2, product, sum, quotient } step = Step::leaf;
+  /// The last step that built it (combination: a·x + b·y).
+  enum class Step { leaf, affine, square, clamp, sqrt, exp, log2, product, sum, quotient, combination } step = Step::leaf;
   bool nonnegative = false;  ///< ≥ 0 for any constants (max, squares, square roots, exp, products of such)
 
   expr::Expression expression(const std::vector<std::string>& variables = kLobeVariables) const;
@@ -33,7 +33,9 @@ struct Shape {
 /// The most free constants a shape may have.
 inline constexpr int kMaxShapeConstants = 4;
 
-/// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma)
+/// Every shape of cost ≤ max_cost over `operations` (the affine step a·x + b is Operation::fma; the
+/// combination a·x + b·y of two shapes without free constants, a linear model in computed
+/// features, costs an fma and a mul)
 /// built from the leaves `variables` (one per per-pixel variable), cheapest first, then in a fixed
 /// order; at most `limit` shapes, fewer when `stop` (asked every 1024 shapes) says so.
 /// Deterministic but for the stop.

@@ -213,8 +213,8 @@ TEST(ReadDesign, RefusesWhatTheCliRefusesInOneLineNamingTheKey) {
       {[](Json& j) { j["members"][0]["max_rel"] = "0"; }, "'members'[0].'max_rel' must be a number ≥ 0"},
       {[](Json& j) { j["members"][0]["argmax_c"] = 2; }, "'members'[0].'argmax_c' must be a cosine"},
       {[](Json& j) { j["members"][0]["argmax_param"] = 1000; }, "'members'[0].'argmax_param' must be in the range"},
-      {[](Json& j) { j["members"][0]["model_cost"] = -1; }, "'members'[0].'model_cost' must be an integer in [0, max_cost = 2]"},
-      {[](Json& j) { j["members"][0]["model_cost"] = 3; }, "'members'[0].'model_cost' must be an integer"},
+      {[](Json& j) { j["members"][0]["model_cost"] = -1; }, "'members'[0].'model_cost' must be an integer in [0, 200]"},
+      {[](Json& j) { j["members"][0]["model_cost"] = 201; }, "'members'[0].'model_cost' must be an integer"},
       {[](Json& j) { j["members"][0].erase("shape"); }, "'members'[0].'shape' is missing"},
       {[](Json& j) { j = Json::array(); }, "must hold a JSON object"},
   };

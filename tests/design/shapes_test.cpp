@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <set>
 #include <span>
 
@@ -21,6 +22,22 @@ TEST(Shapes, EnumerationIsByCostWithoutRepeats) {
   EXPECT_TRUE(keys.count("c"));
   EXPECT_TRUE(keys.count("max(c * 7 + 7, 0) ^ 2")) << "the clamped affine square";
   EXPECT_TRUE(keys.count("c / (c * 7 + 7)")) << "Schlick's rational shape";
+}
+
+// a·x + b·y joins two computed features (no free constants of their own): a linear model in them.
+TEST(Shapes, CombinationsJoinFeaturesWithoutConstants) {
+  const auto shapes = enumerate_shapes(parse_operations("all"), 5, 1'000'000);
+  int combinations = 0;
+  for (const auto& s : shapes)
+    if (s.step == Shape::Step::combination) {
+      ++combinations;
+      EXPECT_EQ(s.constants, 2) << s.key;
+    }
+  EXPECT_GT(combinations, 10);
+  EXPECT_TRUE(std::ranges::any_of(shapes, [](const Shape& s) { return s.key == "c * 7 + c ^ 2 * 7"; }));
+  // Without fma or without mul there is no combination.
+  for (const char* ops : {"mul,add,max", "fma,add,max"})
+    for (const auto& s : enumerate_shapes(parse_operations(ops), 6, 1'000'000)) EXPECT_NE(s.step, Shape::Step::combination) << ops;
 }
 
 TEST(Shapes, OperationsRestrictTheSpace) {

@@ -84,6 +84,7 @@ constexpr std::optional<Precision> precision_named(std::string_view name) {
 /// The documented ranges of the options: anything outside is InvalidField named by its key.
 struct Ranges {
   static constexpr int max_cost = 24;                 ///< max_cost in [1, 24]
+  static constexpr int member_cost = 200;             ///< a member's model_cost, at most (an engine's form refitted may pass max_cost)
   static constexpr std::int64_t forms = 1'000'000;    ///< max_forms in [1, 10⁶]
   static constexpr double time_s = 86'400;            ///< time_s in (0, 86400]
   static constexpr int threads = 1024;                ///< threads in [0, 1024]
