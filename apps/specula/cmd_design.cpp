@@ -83,7 +83,7 @@ design::Settings settings_of(const DesignOptions& o) {
   model.params = o.params;
   s.params = model.param_values();
   if (!o.form.empty()) s.form = form_named(o.form);
-  s.variables = o.vars.empty() ? design::default_variables(s.target) : split_names(o.vars);
+  s.variables = design::target_variables(s.target, o.vars.empty() ? std::vector<std::string>{} : split_names(o.vars));
   if (o.range.empty()) {  // the target's own: n = 1:1000 for a lobe, a term's, none for an expression without parameters
     const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);

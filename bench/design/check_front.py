@@ -14,7 +14,9 @@ design.json). Other lobe targets are not supported. A target of several per-pixe
 (NoV, NoL) has its members' formulas from front.csv evaluated here too, through NumPy,
 on a tensor grid of the variables (denser toward 0) at each parameter value. The split-sum terms
 (env-brdf-*) are integrated here by Gauss-Legendre over the half vector, and their claims, which
-specula measures against its table, may be low by the table's stated 2e-3. Prints one line per
+specula measures against its table, may be low by the table's stated 2e-3; the pairs (env-brdf-ggx,
+env-brdf-beckmann) have each member checked at output = 0 against A and at output = 1 against B.
+Prints one line per
 member (claimed, found on the grid, where) and exits 1 if a claim is low.
 """
 import argparse
@@ -100,6 +102,8 @@ def split_sum(part, distribution):
 
 SEVERAL = {"smith-g2-ggx": smith_g2_ggx, "smith-g2-beckmann": smith_g2_beckmann,
            **{f"env-brdf-{part}-{d}": split_sum(part, d) for part in "ab" for d in ("ggx", "beckmann")}}
+# Targets of several outputs: each output's function, the member evaluated at output = 0, 1, ...
+OUTPUTS = {f"env-brdf-{d}": [SEVERAL[f"env-brdf-a-{d}"], SEVERAL[f"env-brdf-b-{d}"]] for d in ("ggx", "beckmann")}
 
 
 def target_function(design):
@@ -135,37 +139,40 @@ def several_variables(design, members, points):
     """Members of a target of several per-pixel variables, their formulas evaluated here."""
     import numpy
     variables, param, lo, hi = design["variables"], design["param"], design["lo"], design["hi"]
-    if design["target"] not in SEVERAL:
+    outputs = OUTPUTS.get(design["target"])
+    if design["target"] not in SEVERAL and not outputs:
         raise SystemExit(f"check_front: no independent formula for the target '{design['target']}'")
-    target = SEVERAL[design["target"]]
+    targets = outputs or [SEVERAL[design["target"]]]
     tabulated = design["target"].startswith("env-brdf-")  # each value a cubature here: a coarser grid
     axis = (sorted({(i / 24) ** 2 for i in range(1, 25)} | {i / 12 for i in range(1, 13)}) if tabulated else
             sorted({(i / 160) ** 2 for i in range(1, 161)} | {i / 160 for i in range(1, 161)} | {1e-6, 1e-4}))
     grid = [lo + (hi - lo) * i / (points - 1) for i in range(points)] if param else [lo]
     functions = {"max": numpy.maximum, "min": numpy.minimum, "sqrt": numpy.sqrt, "exp": numpy.exp, "log": numpy.log,
                  "log2": numpy.log2, "abs": numpy.abs, "pi": math.pi, "__builtins__": {}}
-    known = {}
+    known = [{} for _ in targets]
 
-    def cached(x, y):  # the tabulated terms' cubature, once per point for every member
-        if not known:
-            known.update({(v, l): target(v, l, None) for v, l in zip(x.flat, y.flat)})
-        return numpy.vectorize(lambda v, l: known[(v, l)])(x, y)
+    def cached(o, x, y):  # the tabulated terms' cubature, once per point for every member
+        if not known[o]:
+            known[o].update({(v, l): targets[o](v, l, None) for v, l in zip(x.flat, y.flat)})
+        return numpy.vectorize(lambda v, l: known[o][(v, l)])(x, y)
     low = 0
     for m in members:
         code = compile(m["formula"].replace("^", "**"), m["id"], "eval")
 
-        def f(x, y, p, code=code):
+        def f(x, y, o, p, code=code):
+            point = [x, y, o] if outputs else [x, y]
             with numpy.errstate(all="ignore"):
-                return eval(code, functions, dict(zip([*variables, param], [x, y, p])))
+                return eval(code, functions, dict(zip([*variables, param], [*point, p])))
         claimed, found, where = float(m["max_abs_error"]), 0.0, None
         for p in grid + ([float(m["argmax_param"])] if param else []):
-            x, y = numpy.meshgrid(axis, axis)
-            values = numpy.broadcast_to(f(x, y, p), x.shape)
-            exact = numpy.vectorize(lambda v, l: target(v, l, p))(x, y) if not tabulated else cached(x, y)
-            errors = numpy.abs(values - exact)
-            k = int(numpy.nanargmax(errors))
-            if errors.flat[k] > found:
-                found, where = float(errors.flat[k]), (x.flat[k], y.flat[k], p)
+            for o, target in enumerate(targets):
+                x, y = numpy.meshgrid(axis, axis)
+                values = numpy.broadcast_to(f(x, y, o, p), x.shape)
+                exact = numpy.vectorize(lambda v, l: target(v, l, p))(x, y) if not tabulated else cached(o, x, y)
+                errors = numpy.abs(values - exact)
+                k = int(numpy.nanargmax(errors))
+                if errors.flat[k] > found:
+                    found, where = float(errors.flat[k]), (x.flat[k], y.flat[k], p)
         # A tabulated term's claims are measured against its table, within 2e-3 of the cubature.
         ok = found <= claimed * (1 + 1e-9) + (2e-3 if tabulated else 1e-15)
         low += not ok

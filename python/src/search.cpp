@@ -125,6 +125,7 @@ py::dict lobe_dict(const design::Lobe& l) {
   d["argmax_c"] = l.argmax_c;
   d["argmax_param"] = l.argmax_param;
   d["max_rel"] = l.max_rel;
+  d["max_abs_bound"] = number_or_none(l.max_abs_bound);
   d["ops"] = l.ops;
   d["model_cost"] = l.model_cost;
   d["ns_per_eval"] = number_or_none(l.ns_per_eval);
@@ -151,8 +152,8 @@ py::dict design_run(const py::dict& kwargs) {
   s.target = argument<std::string>(kwargs["target"], "target");
   for (const auto& [key, value] : kwargs["params"].cast<py::dict>()) s.params[py::str(key)] = argument<double>(value, "params");
   if (!kwargs["form"].is_none()) s.form = queries::form_named(argument<std::string>(kwargs["form"], "form"), Spelling::key);
-  s.variables = kwargs["vars"].is_none() ? design::default_variables(s.target)
-                                         : argument<std::vector<std::string>>(kwargs["vars"], "vars");
+  s.variables = design::target_variables(
+      s.target, kwargs["vars"].is_none() ? std::vector<std::string>{} : argument<std::vector<std::string>>(kwargs["vars"], "vars"));
   if (kwargs["param"].is_none() && kwargs["range"].is_none()) {  // the target's own range
     const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);

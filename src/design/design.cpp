@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <map>
 #include <mutex>
 #include <tbb/parallel_for.h>
@@ -27,6 +28,7 @@
 #include "specula/glsl/glsl.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/simd/lobes.h"
+#include "certify.h"
 #include "checks.h"
 #include "spirv.h"
 #include "verify.h"
@@ -147,6 +149,77 @@ std::optional<Lobe> finished_lobe(const Shape& shape, std::span<const Samples> f
   return l;
 }
 
+// The members of a target of several outputs made of each output's own: every output designed
+// alone (output_targets; its share of the time, untimed), and each tuple of their fronts' members
+// — at most kJoinedTuples, the fronts thinned evenly from cheapest to most accurate — as one
+// formula (stacked_formula), measured over the whole target. Shares nothing between the outputs
+// but what the compiler finds common; the search over the whole finds what a formula can share.
+constexpr std::size_t kJoinedTuples = 100;
+
+// Whether a function target's formula reads its range parameter.
+bool reads_range_parameter(const Settings& s) {
+  Settings without = s;
+  without.param.clear();
+  try {
+    (void)function_expression(without);
+    return false;  // parses without it as a variable: it does not read it
+  } catch (const InvalidArgument&) {
+    return true;
+  }
+}
+
+std::vector<Lobe> joined_members(const Settings& s, const Stopper& stopper) {
+  const std::vector<std::string> targets = output_targets(s.target);
+  std::vector<std::vector<Lobe>> fronts;
+  for (const std::string& target : targets) {
+    Settings alone = s;
+    alone.target = target;
+    alone.variables.pop_back();  // the output index
+    alone.time_s = s.time_s / static_cast<double>(targets.size() + 1);
+    alone.measure_cost = false;
+    alone.gpu_timer = {};
+    alone.precision = Precision::f64;
+    if (!s.param.empty() && !reads_range_parameter(alone)) {  // a part without the range parameter
+      alone.param.clear();
+      alone.lo = alone.hi = 1;
+    }
+    const Result r = design(alone);
+    if (r.cancelled || stopper.cancelled()) return {};
+    fronts.push_back(r.front);
+  }
+  const auto per_front = static_cast<std::size_t>(
+      std::max(1.0, std::floor(std::pow(static_cast<double>(kJoinedTuples), 1.0 / static_cast<double>(fronts.size())))));
+  for (auto& front : fronts)
+    if (front.size() > per_front) {
+      std::vector<Lobe> thinned;
+      for (std::size_t j = 0; j < per_front; ++j)
+        thinned.push_back(front[per_front == 1 ? front.size() - 1 : j * (front.size() - 1) / (per_front - 1)]);
+      front = std::move(thinned);
+    }
+  std::vector<Lobe> out;
+  std::vector<std::size_t> pick(fronts.size(), 0);
+  for (;;) {
+    std::vector<std::string> formulas, shapes;
+    Lobe l;
+    for (std::size_t i = 0; i < fronts.size(); ++i) {
+      const Lobe& part = fronts[i][pick[i]];
+      formulas.push_back(part.formula);
+      shapes.push_back(part.shape);
+      l.model_cost += part.model_cost;
+    }
+    l.formula = stacked_formula(formulas);
+    l.shape = "each output alone: " + fmt::format("{}", fmt::join(shapes, " | "));
+    l.model_cost = std::min(l.model_cost, Ranges::member_cost);
+    set_errors(l, domain_error(l, s, [&] { return stopper.cancelled(); }));
+    if (stopper.cancelled()) return {};
+    if (std::isfinite(objective_error(l, s.objective))) out.push_back(std::move(l));
+    std::size_t i = 0;
+    while (i < pick.size() && ++pick[i] == fronts[i].size()) pick[i++] = 0;
+    if (i == pick.size()) break;
+  }
+  return out;
+}
+
 // The built-in bare lobes with the range parameter (one per family), and the spherical Gaussian
 // e^(n(c − 1)) where the parameter is n.
 std::vector<Lobe> reference_lobes(const Settings& s) {
@@ -195,7 +268,8 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
   std::vector<Lobe*> native_lobes, builtin_lobes;
   for (Lobe* l : lobes) {
     if (is_formula(*l)) {
-      natives.push_back({expr::parse(l->formula, formula_variables(s)), p, s.variables.size()});
+      natives.push_back({is_function_target(s.target) ? shader_expression(s, l->formula) : expr::parse(l->formula, formula_variables(s)),
+                         p, shader_variables(s)});
       native_lobes.push_back(l);
     } else {
       builtin_lobes.push_back(l);
@@ -249,15 +323,16 @@ std::string time_lobes(std::vector<Lobe*> lobes, const Settings& s, const Stoppe
 // built-in whose GLSL has no lobe function of c and the parameter.
 std::optional<GpuFunction> gpu_function(const Lobe& l, const Settings& s) {
   const double p = timing_param(s);
-  GpuFunction f{{}, static_cast<int>(s.variables.size()), !s.param.empty(), p};
+  GpuFunction f{{}, static_cast<int>(shader_variables(s)), !s.param.empty(), p};
   std::string arguments;
-  for (const auto& name : formula_variables(s)) arguments += (arguments.empty() ? "float " : ", float ") + name;
+  for (const auto& name : formula_variables(s))
+    if (name != kOutputVariable || output_count(s.target) == 1) arguments += (arguments.empty() ? "float " : ", float ") + name;
   if (is_formula(l)) {
     Settings at_p = s;
     if (!s.param.empty()) at_p.params[s.param] = p;
     at_p.param.clear();
     f.glsl = fmt::format("float specula_term({}) {{\n  return {};\n}}\n", arguments,
-                         expr::to_glsl(function_expression(at_p, l.formula)));
+                         expr::to_glsl(shader_expression(at_p, l.formula)));
     return f;
   }
   // The model's lobe function, `float specula_<family or id>_lobe(float c[, float n])` (a family's
@@ -298,6 +373,31 @@ std::string time_on_gpu(Result& result) {
                      "float, on {}", s.variables.front(), timing.device);
 }
 
+// Each member's and evaluable reference's error bounded by interval arithmetic (certify.h); where
+// a box's centre shows a larger error than the measurement found, that is the claim.
+void certify_errors(Result& result, const std::function<bool()>& stop) {
+  const Settings& s = result.settings;
+  std::vector<Lobe*> lobes;
+  for (auto* list : {&result.front, &result.references})
+    for (Lobe& l : *list)
+      if (is_formula(l)) lobes.push_back(&l);
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, lobes.size(), [&](std::size_t i) {
+      if (stop()) return;
+      Lobe& l = *lobes[i];
+      const Certified c = certify(s, l.formula, l.max_abs, stop);
+      if (stop()) return;  // cut short: no bound
+      l.max_abs_bound = c.bound;
+      if (c.found > l.max_abs) {
+        l.max_abs = c.found;
+        l.argmax_c = c.where[0];
+        if (!s.param.empty()) l.argmax_param = c.where.back();
+      }
+    });
+  });
+}
+
 // SPIR-V instructions of every member and reference (spirv.h); the note says how, or why not.
 std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   const Settings& s = result.settings;
@@ -306,7 +406,7 @@ std::string count_spirv(Result& result, const std::function<bool()>& stop) {
   std::string why;
   const auto count = [&](Lobe& l) {
     if (!why.empty()) return;
-    const auto n = function ? function_spirv_instructions(function_expression(s, l.formula), s.variables.size(), work.path(), stop, why)
+    const auto n = function ? function_spirv_instructions(shader_expression(s, l.formula), shader_variables(s), work.path(), stop, why)
                             : lobe_spirv_instructions(lobe_at(l, s)(timing_param(s)), work.path(), stop, why);
     if (n) l.spirv_instructions = *n;
   };
@@ -404,6 +504,10 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
       result.front = passing_front(std::move(members), result.refused, s, timed, stop);
       name(result.front, "d");
       name(result.refused, "refused");
+      if (certifiable(s)) {
+        tell("certifying", 0, static_cast<std::int64_t>(result.front.size() + result.references.size()), nullptr);
+        certify_errors(result, stop);
+      }
       result.spirv_note = s.measure_cost ? count_spirv(result, stop) : "SPIR-V not counted: no cost measured (--no-timing)";
       if (s.gpu_timer && s.measure_cost && !stop()) result.gpu_note = time_on_gpu(result);
     } catch (const Interrupted&) {
@@ -598,11 +702,13 @@ bool is_identifier(const std::string& name) {
          std::ranges::all_of(name, [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
 }
 
-// A tabulated term: its two variables (μ = N·V, then the roughness, any names) and no range.
+// A tabulated term: its two variables (μ = N·V, then the roughness, any names; then the output
+// index of the pair) and no range.
 void validate_tabulated_target(const Settings& s) {
-  if (s.variables.size() != 2)
+  const std::size_t outputs = output_count(s.target) > 1 ? 1 : 0;
+  if (s.variables.size() != 2 + outputs)
     throw InvalidField("vars", fmt::format("the target '{}' takes two per-pixel variables (NoV, r), got {}", s.target,
-                                           s.variables.size()));
+                                           s.variables.size() - outputs));
   if (!s.param.empty() || s.lo != s.hi)
     throw InvalidField("range", fmt::format("the target '{}' has no parameter: it takes no range", s.target));
 }
@@ -613,6 +719,15 @@ void validate_tabulated_target(const Settings& s) {
 void validate_function_target(const Settings& s) {
   if (s.variables.empty() || s.variables.size() > kMaxVariables)
     throw InvalidField("vars", fmt::format("a target has 1 to {} per-pixel variables, got {}", kMaxVariables, s.variables.size()));
+  if (const int outputs = output_count(s.target); outputs > 1) {
+    if (outputs > kMaxOutputs)
+      throw InvalidField("target", fmt::format("a target has at most {} outputs (parts between ';'), got {}", kMaxOutputs, outputs));
+    if (s.variables.size() < 2 || !is_output_variable(s, s.variables.size() - 1))
+      throw InvalidField("vars", fmt::format("a target of {} outputs takes its per-pixel variables and then '{}' (the output index)",
+                                             outputs, kOutputVariable));
+    if (function_formula(s.target).find("*()") != std::string::npos)
+      throw InvalidField("target", "an output of the target is empty (nothing between two ';')");
+  }
   for (std::size_t i = 0; i < s.variables.size(); ++i) {
     const std::string& v = s.variables[i];
     if (!is_identifier(v)) throw InvalidField("vars", fmt::format("'{}' is not a variable name", v));
@@ -691,6 +806,15 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
     if (progress) progress({phase, done, total, front, result.forms_screened, result.forms_total});
   };
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+
+  // 0. A target of several outputs: each output designed alone first (the time shared), their
+  // fronts' members joined; then the search over the whole, in the time left, for what they share.
+  std::vector<Lobe> joined;
+  if (output_count(s.target) > 1) {
+    tell("designing each output alone", 0, output_count(s.target), nullptr);
+    joined = joined_members(s, stopper);
+    if (stopper.cancelled()) result.cancelled = true;
+  }
 
   // 1. The first max_forms shapes (all shards' together), this shard's share, screened on a few
   // parameter values.
@@ -793,7 +917,7 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   });
   if (stopper.cancelled()) result.cancelled = true;
 
-  std::vector<Lobe> members;
+  std::vector<Lobe> members = std::move(joined);
   for (auto& l : finished)
     if (l && std::isfinite(objective_error(*l, s.objective))) members.push_back(std::move(*l));
   finish_front(std::move(members), result, stopper, tell);

@@ -162,14 +162,24 @@ Samples function_samples_at(const Settings& s, double p) {
 
 }  // namespace
 
+std::vector<double> output_axis(const Settings& s) {
+  std::vector<double> out;
+  for (int i = 0; i < output_count(s.target); ++i) out.push_back(i);
+  return out;
+}
+
 Samples function_rows(const Settings& s, double p) {
   const std::size_t k = s.variables.size();
-  const std::vector<double> values = axis(k == 1 ? 86 : k == 2 ? 16 : 8);
+  const std::size_t continuous = k - (output_count(s.target) > 1 ? 1 : 0);
+  const std::vector<double> values = axis(continuous == 1 ? 86 : continuous == 2 ? 16 : 8);
+  std::vector<std::vector<double>> axes(k, values);
+  for (std::size_t v = 0; v < k; ++v)
+    if (is_output_variable(s, v)) axes[v] = output_axis(s);
   Samples out{p, {}, std::vector<std::vector<double>>(k), {}};
   std::size_t rows = 1;
-  for (std::size_t v = 0; v < k; ++v) rows *= values.size();
+  for (const auto& a : axes) rows *= a.size();
   for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t v = 0, rest = r; v < k; ++v, rest /= values.size()) out.x[v].push_back(values[rest % values.size()]);
+    for (std::size_t v = 0, rest = r; v < k; rest /= axes[v].size(), ++v) out.x[v].push_back(axes[v][rest % axes[v].size()]);
   std::vector<std::vector<double>> columns = out.x;
   if (!s.param.empty()) columns.emplace_back(rows, p);
   out.value = target_values(s, columns);

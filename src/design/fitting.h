@@ -35,8 +35,11 @@ std::vector<double> param_grid(double lo, double hi, std::size_t count);
 Samples samples_at(const Settings& s, double p);
 /// A function target's rows at p, every one: the tensor product of each per-pixel variable's
 /// values over (0, 1] (86 even and 43 in t²/4 for one variable, 16 + 8 a side for two, 8 + 4 for
-/// three), the target evaluated there (non-finite values kept).
+/// three; the output index of a target of several outputs is no such variable: it takes its
+/// values 0, 1, …), the target evaluated there (non-finite values kept).
 Samples function_rows(const Settings& s, double p);
+/// The values of a target's output index: 0, 1, …, output_count − 1.
+std::vector<double> output_axis(const Settings& s);
 
 /// A shape's constants at each grid value, and the error each fit reached.
 struct GridFit {

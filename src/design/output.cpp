@@ -49,14 +49,15 @@ std::string normalization_of(const Lobe& l) {
 }
 
 std::string row(const Lobe& l, double log, std::string_view kind) {
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), kind,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(l.id), kind,
                      csv_field(l.formula), number(l.max_abs), number(l.argmax_c), number(l.argmax_param),
                      number(l.max_rel), number(l.ns_per_eval), number(l.ns_per_eval / log),
                      l.ops > 0 ? std::to_string(l.ops) : std::string(), number(l.spirv_instructions),
                      l.reference ? std::string() : std::to_string(l.model_cost), csv_field(l.shape), csv_field(l.timing),
                      number(l.k), csv_field(l.check), csv_field(normalization_of(l)), number(l.precision_error),
                      csv_field(l.precision_note), number(l.gpu_ps_per_eval),
-                     l.reference || std::isnan(l.gpu_ps_per_eval) ? std::string() : l.gpu_front ? "yes" : "no");
+                     l.reference || std::isnan(l.gpu_ps_per_eval) ? std::string() : l.gpu_front ? "yes" : "no",
+                     std::isinf(l.max_abs_bound) ? std::string("inf") : number(l.max_abs_bound));
 }
 
 // A member's formula with constants to 6 digits (the files hold them in full).
@@ -245,7 +246,7 @@ std::string front_csv(const Result& result) {
   std::string out =
       "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
       "spirv_instructions,model_cost,shape,timing,k,check,normalization,precision_error,precision_note,gpu_ps_per_eval,"
-      "gpu_front\n";
+      "gpu_front,max_abs_bound\n";
   const double log = log_ns(result);
   for (const auto& l : result.front) out += row(l, log, "member");
   for (const auto& l : result.references) out += row(l, log, "reference");

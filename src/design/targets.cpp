@@ -9,6 +9,7 @@
 
 #include "specula/catalogue/catalogue.h"
 #include "specula/design/design.h"
+#include "specula/expr/simplify.h"
 #include "split_sum.h"
 
 namespace specula::design {
@@ -46,7 +47,7 @@ constexpr std::string_view kExpr = "expr:";
   "(" WALTER_B(x) "^2 - 1.259*" WALTER_B(x) " + 0.396)/(3.535*" WALTER_B(x) " + 2.181)*min(max((" WALTER_B(x) \
   " - 0.625)*1e30, 0), 1)"
 
-constexpr std::array<Term, 9> kTerms{{
+constexpr std::array<Term, 11> kTerms{{
     {"fresnel-dielectric", "fresnel_dielectric(c, eta)", "eta", 1.2, 2.5,
      "the exact Fresnel reflectance of unpolarized light at a dielectric interface of index η"},
     {"fresnel-conductor", "fresnel_conductor(c, eta, kappa)", "eta", 0.1, 3,
@@ -67,6 +68,12 @@ constexpr std::array<Term, 9> kTerms{{
      "the split-sum scale A(NoV, r) of Beckmann (α = r²)", "NoV,r", Tabulation::split_sum_a, "beckmann-schlick"},
     {"env-brdf-b-beckmann", "B(NoV, r) of Beckmann, tabulated", "", 1, 1,
      "the split-sum bias B(NoV, r) of Beckmann (α = r²)", "NoV,r", Tabulation::split_sum_b, "beckmann-schlick"},
+    {"env-brdf-ggx", "(A, B)(NoV, r) of GGX, tabulated: A at output = 0, B at output = 1", "", 1, 1,
+     "the split-sum pair (A, B)(NoV, r) of GGX fitted together (two outputs)", "NoV,r,output", Tabulation::split_sum_ab,
+     "ggx-schlick"},
+    {"env-brdf-beckmann", "(A, B)(NoV, r) of Beckmann, tabulated: A at output = 0, B at output = 1", "", 1, 1,
+     "the split-sum pair (A, B)(NoV, r) of Beckmann fitted together (two outputs)", "NoV,r,output",
+     Tabulation::split_sum_ab, "beckmann-schlick"},
 }};
 
 // Karis 2014's EnvBRDFApprox (Unreal Engine 4 on mobile, after Lazarov 2013), its exp2(−9.28·NoV)
@@ -74,7 +81,7 @@ constexpr std::array<Term, 9> kTerms{{
 // A = −1.04·a004 + 1.04 − 0.572·r, B = 1.04·a004 − 0.04 + 0.022·r.
 #define ENV_A004 "(min((1 - r)^2, exp(-6.432405835596292*NoV))*(1 - r) + (0.0425 - 0.0275*r))"
 
-constexpr std::array<TermReference, 13> kReferences{{
+constexpr std::array<TermReference, 14> kReferences{{
     {"fresnel-dielectric", "schlick", "fresnel_schlick(c, " F0_DIELECTRIC ")",
      "Schlick 1994, with F0 from η: Unreal, Filament, three.js, MaterialX"},
     {"fresnel-dielectric", "unreal-exp2", F0_DIELECTRIC " + (1 - " F0_DIELECTRIC ")*" KARIS,
@@ -94,6 +101,8 @@ constexpr std::array<TermReference, 13> kReferences{{
      "Karis 2014's EnvBRDFApprox (Unreal Engine 4 mobile), after Lazarov 2013"},
     {"env-brdf-b-ggx", "lazarov", "1.04*" ENV_A004 " + (0.022*r - 0.04)",
      "Karis 2014's EnvBRDFApprox (Unreal Engine 4 mobile), after Lazarov 2013"},
+    {"env-brdf-ggx", "lazarov", "(1 - output)*(-1.04*" ENV_A004 " + (1.04 - 0.572*r)) + output*(1.04*" ENV_A004
+     " + (0.022*r - 0.04))", "Karis 2014's EnvBRDFApprox (Unreal Engine 4 mobile), after Lazarov 2013: A and B sharing a004"},
 }};
 
 #undef F0_DIELECTRIC
@@ -114,6 +123,18 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
+// The parts of "expr: F0; F1; …" (one for an expression without ';').
+std::vector<std::string_view> expression_parts(std::string_view target) {
+  std::vector<std::string_view> out;
+  const std::string_view text = target.substr(kExpr.size());
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t end = std::min(text.find(';', start), text.size());
+    out.push_back(trimmed(text.substr(start, end - start)));
+    start = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 const Term* term_named(std::string_view id) {
@@ -128,6 +149,10 @@ bool is_tabulated(std::string_view target) {
 
 std::function<double(std::span<const double>)> target_function(const Settings& s) {
   if (const Term* t = term_named(s.target); t && t->tabulation != Tabulation::none) {
+    if (t->tabulation == Tabulation::split_sum_ab)
+      return [model = t->model](std::span<const double> x) {
+        return split_sum(model, x[2] < 0.5 ? SplitSumPart::a : SplitSumPart::b, x[0], x[1]);
+      };
     const SplitSumPart part = t->tabulation == Tabulation::split_sum_a ? SplitSumPart::a : SplitSumPart::b;
     return [model = t->model, part](std::span<const double> x) { return split_sum(model, part, x[0], x[1]); };
   }
@@ -157,9 +182,54 @@ std::span<const TermReference> term_references() { return kReferences; }
 
 bool is_function_target(std::string_view target) { return target.starts_with(kExpr) || term_named(target); }
 
+int output_count(std::string_view target) {
+  if (const Term* t = term_named(target)) return t->tabulation == Tabulation::split_sum_ab ? 2 : 1;
+  return target.starts_with(kExpr) ? static_cast<int>(expression_parts(target).size()) : 1;
+}
+
+bool is_output_variable(const Settings& s, std::size_t v) {
+  return output_count(s.target) > 1 && v + 1 == s.variables.size() && s.variables[v] == kOutputVariable;
+}
+
+std::vector<std::string> target_variables(std::string_view target, std::vector<std::string> given) {
+  if (given.empty()) given = default_variables(target);
+  if (output_count(target) > 1 && given.back() != kOutputVariable) given.emplace_back(kOutputVariable);
+  return given;
+}
+
+std::vector<std::string> output_targets(std::string_view target) {
+  if (output_count(target) == 1) return {std::string(target)};
+  if (const Term* t = term_named(target)) {
+    const std::string rest(t->id.substr(std::string_view("env-brdf-").size()));
+    return {"env-brdf-a-" + rest, "env-brdf-b-" + rest};
+  }
+  std::vector<std::string> out;
+  for (const std::string_view part : expression_parts(target)) out.push_back(fmt::format("{} {}", kExpr, part));
+  return out;
+}
+
+// Part i times the Lagrange basis of the points 0, 1, … that is 1 at output = i and 0 at the others.
+std::string stacked_formula(const std::vector<std::string>& parts) {
+  if (parts.size() == 1) return parts[0];
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::string basis;
+    for (std::size_t j = 0; j < parts.size(); ++j) {
+      if (j == i) continue;
+      const long denominator = static_cast<long>(i) - static_cast<long>(j);
+      basis += fmt::format("{}(output - {})/({})", basis.empty() ? "" : "*", j, denominator);
+    }
+    if (parts.size() == 2) basis = i == 0 ? "(1 - output)" : "output";
+    out += fmt::format("{}{}*({})", i ? " + " : "", basis, parts[i]);
+  }
+  return out;
+}
+
 std::string function_formula(std::string_view target) {
   if (const Term* t = term_named(target)) return std::string(t->formula);
-  return std::string(trimmed(target.substr(kExpr.size())));
+  std::vector<std::string> parts;
+  for (const std::string_view part : expression_parts(target)) parts.emplace_back(part);
+  return stacked_formula(parts);
 }
 
 std::vector<std::string> default_variables(std::string_view target) {
@@ -195,6 +265,28 @@ std::string with_values(std::string_view formula, const ParamValues& params) {
 expr::Expression function_expression(const Settings& s, std::string_view formula) {
   const std::string text = formula.empty() ? function_formula(s.target) : std::string(formula);
   return expr::parse(with_values(text, s.params), formula_variables(s));
+}
+
+std::size_t shader_variables(const Settings& s) { return s.variables.size() - (output_count(s.target) > 1 ? 1 : 0); }
+
+expr::Expression shader_expression(const Settings& s, std::string_view formula) {
+  const expr::Expression e = function_expression(s, formula);
+  const int outputs = output_count(s.target);
+  if (outputs == 1) return e;
+  const auto output = static_cast<std::uint32_t>(s.variables.size() - 1);
+  std::vector<std::string> names = e.variables();
+  names.erase(names.begin() + output);
+  std::vector<expr::Node> sum;
+  for (int i = 0; i < outputs; ++i) {
+    std::vector<expr::Node> nodes(e.nodes().begin(), e.nodes().end());
+    for (expr::Node& n : nodes)
+      if (n.op == expr::Op::variable && n.var == output) n = expr::exact_constant(i, 1, expr::Symbol::one);
+      else if (n.op == expr::Op::variable && n.var > output) --n.var;
+    const expr::Expression part = expr::simplify(expr::Expression(std::move(nodes), names));
+    sum.insert(sum.end(), part.nodes().begin(), part.nodes().end());
+    if (i > 0) sum.push_back({expr::Op::add, 0, 0});
+  }
+  return expr::Expression(std::move(sum), names);
 }
 
 DefaultRange default_range(std::string_view target, const std::vector<std::string>& variables) {

@@ -78,12 +78,17 @@ struct FunctionError {
 FunctionError function_error(const expr::Expression& f, const std::function<double(std::span<const double>)>& t,
                              const Settings& s, double p) {
   const std::size_t k = s.variables.size();
-  const std::vector<double> axis = error_axis(k);
-  std::size_t rows = 1;
-  for (std::size_t v = 0; v < k; ++v) rows *= axis.size();
+  // Each variable's points: error_axis for those over (0, 1], the output index's own values.
+  const std::size_t continuous = k - (output_count(s.target) > 1 ? 1 : 0);
+  std::vector<std::vector<double>> axes(k, error_axis(continuous));
+  for (std::size_t v = 0; v < k; ++v)
+    if (is_output_variable(s, v)) axes[v] = output_axis(s);
+  std::vector<std::size_t> stride(k, 1);
+  for (std::size_t v = 1; v < k; ++v) stride[v] = stride[v - 1] * axes[v - 1].size();
+  const std::size_t rows = stride.back() * axes.back().size();
   std::vector<std::vector<double>> columns(k);
   for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t v = 0, rest = r; v < k; ++v, rest /= axis.size()) columns[v].push_back(axis[rest % axis.size()]);
+    for (std::size_t v = 0; v < k; ++v) columns[v].push_back(axes[v][r / stride[v] % axes[v].size()]);
   if (!s.param.empty()) columns.emplace_back(rows, p);
   const std::vector<double> fv = evaluate_rows(f, columns), tv = target_values(s, columns);
   FunctionError out;
@@ -104,18 +109,20 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
     const auto [a, b] = at(x);
     return b >= s.zone * top && b > 0 ? std::abs(a - b) / b : 0.0;
   };
+  const auto index = [&](std::size_t r, std::size_t v) { return r / stride[v] % axes[v].size(); };
   // Refines from each of the grid's 8 largest local maxima (a cusp — a clamp's kink — may peak
-  // between grid points below another point's value), one variable at a time within a grid step, twice.
+  // between grid points below another point's value), one variable at a time within a grid step,
+  // twice; the output index is not refined (it has no values between its own).
   const auto worst = [&](auto error, const std::vector<double>& errors) {
-    // The grid's local maxima (each at least its neighbours along every variable), largest first.
-    const std::size_t n = axis.size();
+    // The grid's local maxima (each at least its neighbours along every variable over (0, 1]), largest first.
     std::vector<std::size_t> order;
     for (std::size_t r = 0; r < rows; ++r) {
       bool peak = true;
-      for (std::size_t v = 0, stride = 1, rest = r; v < k && peak; ++v, stride *= n, rest /= n) {
-        const std::size_t i = rest % n;
-        if (i > 0 && errors[r - stride] > errors[r]) peak = false;
-        if (i + 1 < n && errors[r + stride] > errors[r]) peak = false;
+      for (std::size_t v = 0; v < k && peak; ++v) {
+        if (is_output_variable(s, v)) continue;
+        const std::size_t i = index(r, v);
+        if (i > 0 && errors[r - stride[v]] > errors[r]) peak = false;
+        if (i + 1 < axes[v].size() && errors[r + stride[v]] > errors[r]) peak = false;
       }
       if (peak) order.push_back(r);
     }
@@ -131,6 +138,8 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
       double found = errors[order[start]];
       for (int round = 0; round < 2; ++round)
         for (std::size_t v = 0; v < k; ++v) {
+          if (is_output_variable(s, v)) continue;
+          const std::vector<double>& axis = axes[v];
           const auto it = std::ranges::lower_bound(axis, x[v]);
           const double a = it == axis.begin() ? axis.front() : *(it - 1), b = it + 1 >= axis.end() ? axis.back() : *(it + 1);
           if (!(a < b)) continue;
@@ -140,20 +149,21 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
         }
       if (found > best.second) best = {x, found};
     }
-    // Each edge of the box (every variable but one at an end of its axis) as a problem of one
-    // variable: its 2 largest local maxima refined along it. A ridge across the variables climbs
-    // to the box's side, where no start in the interior reaches (a kink along NoV·NoL = const).
-    for (std::size_t w = 0; w < k && k > 1; ++w)
-      for (std::size_t corner = 0; corner < (std::size_t{1} << (k - 1)); ++corner) {
+    // Each edge of the box (every variable but one at an end of its axis; the output index at
+    // each of its values) as a problem of one variable: its 2 largest local maxima refined along
+    // it. A ridge across the variables climbs to the box's side, where no start in the interior
+    // reaches (a kink along NoV·NoL = const).
+    for (std::size_t w = 0; w < k && continuous > 1; ++w) {
+      if (is_output_variable(s, w)) continue;
+      const std::size_t n = axes[w].size();
+      for (std::size_t r0 = 0; r0 < rows; ++r0) {
+        // r0: the edge's first row (w at 0), every other variable at an end (or any output).
+        bool corner = index(r0, w) == 0;
+        for (std::size_t v = 0; v < k && corner; ++v)
+          if (v != w && !is_output_variable(s, v)) corner = index(r0, v) == 0 || index(r0, v) + 1 == axes[v].size();
+        if (!corner) continue;
         std::vector<std::size_t> line;  // the rows of this edge, in the order of variable w
-        for (std::size_t i = 0; i < n; ++i) {
-          std::size_t r = 0;
-          for (std::size_t v = k, bit = 0; v-- > 0;) {
-            const std::size_t index = v == w ? i : ((corner >> bit++) & 1) * (n - 1);
-            r = r * n + index;
-          }
-          line.push_back(r);
-        }
+        for (std::size_t i = 0; i < n; ++i) line.push_back(r0 + i * stride[w]);
         std::vector<std::size_t> peaks;
         for (std::size_t i = 0; i < n; ++i)
           if ((i == 0 || errors[line[i - 1]] <= errors[line[i]]) && (i + 1 == n || errors[line[i + 1]] <= errors[line[i]]))
@@ -163,7 +173,7 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
           const std::size_t i = peaks[j];
           std::vector<double> x(k);
           for (std::size_t v = 0; v < k; ++v) x[v] = columns[v][line[i]];
-          const double a = axis[i == 0 ? 0 : i - 1], b = axis[std::min(i + 1, n - 1)];
+          const double a = axes[w][i == 0 ? 0 : i - 1], b = axes[w][std::min(i + 1, n - 1)];
           std::vector<double> y = x;
           const auto along = [&](double value) { y[w] = value; return error(y); };
           double found = errors[line[i]];
@@ -171,6 +181,7 @@ FunctionError function_error(const expr::Expression& f, const std::function<doub
           if (found > best.second) best = {x, found};
         }
       }
+    }
     return best;
   };
   std::vector<double> abs_errors(rows), rel_errors(rows);

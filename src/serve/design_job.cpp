@@ -70,6 +70,7 @@ struct DesignJob final : Job {
              {"formula", l.formula},
              {"display", l.reference ? l.formula : expr::to_infix(fit::rounded(expr::parse(l.formula), 6))},
              {"max_abs_error", l.max_abs},
+             {"max_abs_bound", number_or_null(l.max_abs_bound)},
              {"argmax_param", l.argmax_param},
              {"max_rel_error", l.max_rel},
              {"ns_per_eval", number_or_null(l.ns_per_eval)},
@@ -119,7 +120,7 @@ struct DesignJob final : Job {
 [[noreturn]] void fail(std::string_view field, const std::string& message) { throw InvalidField(std::string(field), message); }
 
 void read_range(const Fields& f, design::Settings& s) {
-  s.variables = f.has("vars") ? f.names("vars") : design::default_variables(s.target);
+  s.variables = design::target_variables(s.target, f.has("vars") ? f.names("vars") : std::vector<std::string>{});
   if (!f.has("param") && !f.has("range")) {  // the target's own range
     const design::DefaultRange r = design::default_range(s.target, s.variables);
     std::tie(s.param, s.lo, s.hi) = std::tie(r.param, r.lo, r.hi);

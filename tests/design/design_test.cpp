@@ -131,7 +131,7 @@ TEST(Design, ASmallSearchBeatsTheLogLobeAndItsClaimsHold) {
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "id,kind,formula,max_abs_error,argmax_c,argmax_param,max_rel_error,ns_per_eval,cost_vs_log,ops,"
               "spirv_instructions,model_cost,shape,timing,k,check,normalization,precision_error,precision_note,"
-              "gpu_ps_per_eval,gpu_front");
+              "gpu_ps_per_eval,gpu_front,max_abs_bound");
     EXPECT_EQ(static_cast<std::size_t>(std::ranges::count(csv, '\n')), 1 + r.front.size() + r.references.size());
   }
 }

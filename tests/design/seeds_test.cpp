@@ -6,19 +6,14 @@
 
 #include "design/fitting.h"
 #include "design/seeds.h"
+#include "function_settings.h"
 #include "specula/design/design.h"
 
 namespace specula::design {
 namespace {
 
 Settings smith() {
-  Settings s;
-  s.target = "smith-g2-ggx";
-  s.variables = default_variables(s.target);
-  const DefaultRange r = default_range(s.target, s.variables);
-  s.param = r.param;
-  s.lo = r.lo;
-  s.hi = r.hi;
+  Settings s = function_settings("smith-g2-ggx");
   s.threads = 1;
   return s;
 }

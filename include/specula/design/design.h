@@ -100,7 +100,8 @@ struct Ranges {
 /// exact as written, with its usual range parameter and the engines' approximations of it.
 /// How a term is computed: its formula, or one of the split-sum terms tabulated from specula's
 /// cubature (docs/designer.md, "The environment BRDF").
-enum class Tabulation { none, split_sum_a, split_sum_b };
+/// split_sum_ab: both, as a target of two outputs (A at output = 0, B at output = 1).
+enum class Tabulation { none, split_sum_a, split_sum_b, split_sum_ab };
 
 struct Term {
   std::string_view id;       ///< the target's name: "fresnel-dielectric"
@@ -137,8 +138,28 @@ const Term* term_named(std::string_view id);
 /// Whether `target` is a tabulated term (no formula: its values are interpolated).
 bool is_tabulated(std::string_view target);
 
-/// The most per-pixel variables a function target may have.
+/// The most per-pixel variables a function target may have (its output index included).
 inline constexpr std::size_t kMaxVariables = 3;
+
+/// A target of several outputs fitted together (docs/designer.md, "Several outputs"): the split
+/// sum's (A, B) ("env-brdf-ggx"), or "expr: F0; F1; …". It is one function of its variables and a
+/// last one, `output`, that takes only the values 0, 1, …, outputs − 1: the target is output i's
+/// formula there (written (1 − output)·F0 + output·F1 for two), and a member is one formula in the
+/// same variables, whose outputs share what they compute (cost and timing count both outputs
+/// together, as a shader computing both does).
+inline constexpr std::string_view kOutputVariable = "output";
+inline constexpr int kMaxOutputs = 4;
+/// The outputs of a target: 2 for the split sum's pairs, the parts of "expr: F0; F1", else 1.
+int output_count(std::string_view target);
+/// Each output of a target of several outputs as a target of its own ("env-brdf-a-ggx",
+/// "expr: F1"); a target of one output: itself.
+std::vector<std::string> output_targets(std::string_view target);
+/// Formulas F0, F1, … (in the same variables) as one formula in `output` that is Fi at output = i:
+/// (1 - output)*(F0) + output*(F1) for two, the Lagrange basis of 0, 1, … for more; F0 for one.
+std::string stacked_formula(const std::vector<std::string>& parts);
+/// The per-pixel variables a target is searched in: `given` (the user's), or default_variables
+/// when none are given; for a target of several outputs, `output` appended where not named last.
+std::vector<std::string> target_variables(std::string_view target, std::vector<std::string> given);
 
 /// The per-pixel variables of a target when none are given: a Term's, c otherwise.
 std::vector<std::string> default_variables(std::string_view target);
@@ -199,6 +220,10 @@ struct Settings {
   const std::atomic<bool>* cancel = nullptr;
 };
 
+/// Whether per-pixel variable v of the settings is the output index (a target of several outputs:
+/// the last variable, named `output`).
+bool is_output_variable(const Settings& s, std::size_t v);
+
 /// One lobe on the front, or a reference lobe.
 struct Lobe {
   std::string id;
@@ -222,6 +247,10 @@ struct Lobe {
   /// member had before its constants were rounded.
   double precision_error = NAN;
   std::string precision_note;
+  /// A function target with a formula: an upper bound on max_abs over [10⁻⁶, 1] per per-pixel
+  /// variable and the whole range, certified by interval arithmetic (docs/designer.md, "A certified
+  /// bound"); inf where the budget ran out first; NaN where not certified (lobes, tabulated terms).
+  double max_abs_bound = NAN;
   double gpu_ps_per_eval = NAN;  ///< measured by Settings::gpu_timer, beyond F = its first variable; NaN if not
   bool gpu_front = false;        ///< members: on the front of GPU cost against error among the front's members
 };
@@ -302,6 +331,14 @@ std::string with_values(std::string_view formula, const ParamValues& params);
 /// A function target's formula (or a member's, a reference's, with `formula` given) as an
 /// expression in formula_variables(s), the target's other parameters written as their values.
 expr::Expression function_expression(const Settings& s, std::string_view formula = {});
+/// What a shader computes for a member of a function target (or a reference, `formula` given): a
+/// target of several outputs' formula at output = 0, 1, … each simplified (expr::simplify), summed
+/// in one expression over the other variables (then the parameter), so that what the outputs share
+/// is computed once where it is timed; a target of one output's expression as function_expression.
+expr::Expression shader_expression(const Settings& s, std::string_view formula = {});
+/// The per-pixel variables a shader reads: the settings' without the output index.
+std::size_t shader_variables(const Settings& s);
+
 /// A function target's values: f(point), the point being its per-pixel variables and then its
 /// range parameter (if any) — its expression evaluated (function_expression), or a tabulated term
 /// interpolated. Valid while `s` lives.
