@@ -4,7 +4,9 @@
 #include "seeds.h"
 
 #include "fitting.h"
+#include "specula/expr/simplify.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <fmt/format.h>
@@ -65,6 +67,76 @@ Node rational_near(double x) {
   return expr::exact_constant(static_cast<int>(p1), static_cast<int>(q1), expr::Symbol::one);
 }
 
+// The form printed with every free constant as 7: its structure.
+std::string structure(const Shape& form, const std::vector<std::string>& names) {
+  std::vector<Node> printed = form.nodes;
+  for (auto& n : printed)
+    if (n.op == Op::constant && !expr::is_exact(n)) n.value = 7;
+  return expr::to_infix(expr::Expression(std::move(printed), names));
+}
+
+// The form simplified (expr::simplify: x·0, x·1 and x + 0 gone, constants folded) where that
+// leaves fewer nodes; its cost and constants counted again.
+Shape simplified(Shape form, const std::vector<std::string>& names) {
+  const expr::Expression e = expr::simplify(form.expression(names));
+  if (e.nodes().size() >= form.nodes.size()) return form;
+  Shape out = form;
+  out.nodes.assign(e.nodes().begin(), e.nodes().end());
+  out.constants = 0;
+  out.cost = 0;
+  for (std::size_t i = 0; i < out.nodes.size(); ++i) {
+    const Node& n = out.nodes[i];
+    out.constants += n.op == Op::constant && !expr::is_exact(n);
+    out.cost += node_cost(n, n.op == Op::pow ? &out.nodes[i - 1] : nullptr);
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+// Which of `values` (the form's free constants; only those `among` marks, if given) move the form
+// in a direction the ones before them do not: the Jacobian's columns on `columns`, Gram–Schmidt in
+// order, a column within 1e-5 (relative) of the span before it is redundant. Empty where the form
+// is not finite there.
+std::vector<bool> independent_constants(const Shape& form, const std::vector<double>& values,
+                                        const std::vector<std::vector<double>>& columns, const std::vector<std::string>& names,
+                                        const std::vector<bool>& among = {}) {
+  const auto at = [&](const std::vector<double>& constants) {
+    return evaluate_rows(with_constants(form, constants, names), columns);
+  };
+  const std::vector<double> base = at(values);
+  if (!std::ranges::all_of(base, [](double x) { return std::isfinite(x); })) return {};
+  std::vector<std::vector<double>> basis;  // orthonormal columns kept so far
+  std::vector<bool> out(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (!among.empty() && !among[k]) continue;
+    std::vector<double> moved = values;
+    const double h = 1e-6 * std::max(1.0, std::abs(values[k]));
+    moved[k] += h;
+    const std::vector<double> after = at(moved);
+    std::vector<double> column(base.size());
+    double norm = 0;
+    for (std::size_t r = 0; r < base.size(); ++r) column[r] = (after[r] - base[r]) / h, norm += column[r] * column[r];
+    if (!std::isfinite(norm) || norm == 0) continue;
+    const double before = std::sqrt(norm);
+    for (const auto& b : basis) {
+      double dot = 0;
+      for (std::size_t r = 0; r < column.size(); ++r) dot += b[r] * column[r];
+      for (std::size_t r = 0; r < column.size(); ++r) column[r] -= dot * b[r];
+    }
+    norm = 0;
+    for (double x : column) norm += x * x;
+    norm = std::sqrt(norm);
+    if (norm <= 1e-5 * before) continue;
+    for (double& x : column) x /= norm;
+    basis.push_back(std::move(column));
+    out[k] = true;
+  }
+  return out;
+}
+
 }  // namespace
 
 Shape without_redundant_constants(Shape form, std::size_t per_pixel) {
@@ -81,44 +153,37 @@ Shape without_redundant_constants(Shape form, std::size_t per_pixel) {
   std::vector<double> values;
   for (const Node& n : form.nodes)
     if (n.op == Op::constant && !expr::is_exact(n)) values.push_back(n.value);
-  const auto at = [&](const std::vector<double>& constants) {
-    return evaluate_rows(with_constants(form, constants, names), columns);
-  };
-  const std::vector<double> base = at(values);
-  std::vector<std::vector<double>> basis;  // orthonormal columns kept so far
-  std::vector<bool> redundant(values.size());
+  const std::vector<bool> kept = independent_constants(form, values, columns, names);
+  if (kept.empty()) return form;
+  const auto rank = [](const std::vector<bool>& v) { return std::ranges::count(v, true); };
+  // Each redundant constant held at 0 or 1 where the kept ones still span as much (the term it
+  // scales or shifts then drops out: x·(y·a + b) + y·(x·c + d) with c = 0 is x·(y·a + b) + y·d),
+  // else at a rational near its value.
+  std::vector<Node> held(values.size());
   for (std::size_t k = 0; k < values.size(); ++k) {
-    std::vector<double> moved = values;
-    const double h = 1e-6 * std::max(1.0, std::abs(values[k]));
-    moved[k] += h;
-    const std::vector<double> after = at(moved);
-    std::vector<double> column(base.size());
-    double norm = 0;
-    for (std::size_t r = 0; r < base.size(); ++r) column[r] = (after[r] - base[r]) / h, norm += column[r] * column[r];
-    if (!std::isfinite(norm)) continue;
-    const double before = std::sqrt(norm);
-    for (const auto& b : basis) {
-      double dot = 0;
-      for (std::size_t r = 0; r < column.size(); ++r) dot += b[r] * column[r];
-      for (std::size_t r = 0; r < column.size(); ++r) column[r] -= dot * b[r];
+    if (kept[k]) continue;
+    held[k] = rational_near(values[k]);
+    for (const int identity : {0, 1}) {
+      std::vector<double> trial = values;
+      trial[k] = identity;
+      const std::vector<bool> still = independent_constants(form, trial, columns, names, kept);
+      if (!still.empty() && rank(still) == rank(kept)) {
+        values[k] = identity;
+        held[k] = expr::exact_constant(identity, 1, expr::Symbol::one);
+        break;
+      }
     }
-    norm = 0;
-    for (double x : column) norm += x * x;
-    norm = std::sqrt(norm);
-    if (norm <= 1e-5 * before) {
-      redundant[k] = true;
-      continue;
-    }
-    for (double& x : column) x /= norm;
-    basis.push_back(std::move(column));
   }
   std::size_t k = 0;
   for (Node& n : form.nodes)
-    if (n.op == Op::constant && !expr::is_exact(n) && redundant[k++]) {
-      n = rational_near(n.value);
-      --form.constants;
+    if (n.op == Op::constant && !expr::is_exact(n)) {
+      if (!kept[k]) {
+        n = held[k];
+        --form.constants;
+      }
+      ++k;
     }
-  return form;
+  return simplified(std::move(form), names);
 }
 
 Shape freed_form(const expr::Expression& e, std::size_t per_pixel, double param) {
@@ -167,11 +232,7 @@ Shape freed_form(const expr::Expression& e, std::size_t per_pixel, double param)
   };
   emit(emit, count - 1);
   out.nodes = std::move(form);
-  std::vector<std::string> names(e.variables().begin(), e.variables().begin() + static_cast<std::ptrdiff_t>(per_pixel));
-  std::vector<Node> printed = out.nodes;
-  for (auto& n : printed)
-    if (n.op == Op::constant && !expr::is_exact(n)) n.value = 7;
-  out.key = expr::to_infix(expr::Expression(std::move(printed), names));
+  out.key = structure(out, {e.variables().begin(), e.variables().begin() + static_cast<std::ptrdiff_t>(per_pixel)});
   return out;
 }
 
@@ -183,7 +244,7 @@ std::vector<Seed> reference_seeds(const Settings& s) {
     Shape form = without_redundant_constants(freed_form(function_expression(s, r.formula), s.variables.size(), s.lo),
                                              s.variables.size());
     if (form.constants == 0 || form.constants > kMaxSeedConstants || form.cost > Ranges::member_cost) continue;
-    form.key = fmt::format("{}'s form: {}", r.id, form.key);
+    form.key = fmt::format("{}'s form: {}", r.id, structure(form, s.variables));
     out.push_back({std::string(r.id), std::move(form)});
   }
   return out;
