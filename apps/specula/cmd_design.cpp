@@ -7,9 +7,9 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "gpu_timer.h"
 #include "specula/design/design.h"
 #include "specula/design/output.h"
-#include "specula/gl/timing.h"
 #include "specula/interrupt/interrupt.h"
 #include "specula/io/files.h"
 #include "specula/report/design_page.h"
@@ -27,18 +27,6 @@ struct DesignOptions {
   bool quiet = false;
   bool gpu_timing = true;
 };
-
-// The GPU axis: the functions timed in an offscreen GL context (the GPU, or llvmpipe without one).
-design::GpuTiming time_on_gpu(const std::vector<design::GpuFunction>& functions) {
-  try {
-    const gl::Context context;
-    std::vector<gl::GlslFunction> glsl;
-    for (const auto& f : functions) glsl.push_back({f.glsl, f.variables, f.has_param, f.param});
-    return {gl::time_functions(context, glsl), gl::to_string(context.info())};
-  } catch (const gl::GlError& e) {
-    return {{}, e.what()};
-  }
-}
 
 // "NAME=LO:HI".
 void read_range(const std::string& text, design::Settings& s) {
@@ -186,6 +174,10 @@ void add_design_command(CLI::App& app) {
       ->check(CLI::Range(0, design::Ranges::threads));
   cmd->add_option("--shard", o->shard, "Screen shard I of N (shapes i with i mod N = I), e.g. 0/4")->capture_default_str();
   cmd->add_flag("!--no-timing", o->settings.measure_cost, "Do not time the front (cost = the cost model)");
+  cmd->add_flag("!--no-refit", o->settings.refit_references,
+                "Do not refit the engines' own forms (Schlick's, the fast Smith, Lazarov's) as members");
+  cmd->add_flag("!--no-certify", o->settings.certify,
+                "Do not bound the errors of a function target's front by interval arithmetic (front.csv max_abs_bound)");
   cmd->add_flag("!--no-gpu-timing", o->gpu_timing, "Do not time the front on the GPU (the GPU axis: an offscreen GL context,\n"
                 "the GPU or Mesa's llvmpipe without one)");
   cmd->add_option("--precision", o->precision, "The members' constants and arithmetic: double (as fitted), or as a shader\n"

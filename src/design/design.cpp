@@ -504,7 +504,7 @@ void finish_front(std::vector<Lobe> members, Result& result, const Stopper& stop
       result.front = passing_front(std::move(members), result.refused, s, timed, stop);
       name(result.front, "d");
       name(result.refused, "refused");
-      if (certifiable(s)) {
+      if (s.certify && certifiable(s)) {
         tell("certifying", 0, static_cast<std::int64_t>(result.front.size() + result.references.size()), nullptr);
         certify_errors(result, stop);
       }
@@ -877,7 +877,8 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   // with both objectives, each is fitted once for each (the front then holds either).
   // The engines' forms refitted first (reference_seeds), then the screening's most promising.
   std::vector<Shape> seeds;
-  for (Seed& seed : reference_seeds(s)) seeds.push_back(std::move(seed.shape));
+  if (s.refit_references)
+    for (Seed& seed : reference_seeds(s)) seeds.push_back(std::move(seed.shape));
   std::vector<const Shape*> candidates;
   for (const Shape& seed : seeds) candidates.push_back(&seed);
   for (const std::size_t i : promising(all, screened))

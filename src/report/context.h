@@ -47,6 +47,7 @@ class Context {
   explicit Context(const Options& options);
 
   bool quick() const noexcept { return options_.quick; }
+  const design::GpuTimer& gpu_timer() const noexcept { return options_.gpu_timer; }
   const std::filesystem::path& dir() const noexcept { return options_.out_dir; }
   void progress(std::string_view what) const { options_.progress(what); }
 

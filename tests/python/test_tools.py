@@ -292,6 +292,21 @@ def test_design_takes_an_engine_term_with_its_own_range(specula):
         specula.design("schlick-weight", precision="quad")
 
 
+def test_design_fits_several_outputs_together_and_bounds_their_error(specula):
+    # "expr: c^2; c^3": one member formula in c and output, c² at output = 0 and c³ at output = 1,
+    # checked here on a dense grid against the error it claims, which its certified bound covers.
+    r = specula.design("expr: c^2; c^3", ops="fma,mul", max_cost=1, measure_cost=False, threads=1, time=30)
+    c = np.linspace(1e-6, 1, 20001)
+    for m in r.front:
+        f = lambda output: eval(m["formula"].replace("^", "**"), {"__builtins__": {}}, {"c": c, "output": output})
+        found = max(np.max(np.abs(f(0) - c ** 2)), np.max(np.abs(f(1) - c ** 3)))
+        assert found <= m["max_abs"] * (1 + 1e-9) + 1e-12, m["formula"]
+        assert m["max_abs_bound"] is None or m["max_abs_bound"] >= m["max_abs"]
+    assert any(m["max_abs_bound"] is not None for m in r.front)
+    with pytest.raises(ValueError, match="outputs"):
+        specula.design("expr: c; c^2; c^3; c^4; c^5")
+
+
 def test_complex_and_text_arrays_are_type_errors_not_silent_casts(specula):
     m = specula.model("ggx", alpha=0.3)
     for bad in [np.array([0.5 + 1j]), np.array(["0.5"]), [object()]]:

@@ -214,6 +214,12 @@ struct Settings {
   /// The members' per-pixel constants rounded to this and adjusted one ulp at a time, their
   /// arithmetic evaluated in it (double: as fitted).
   Precision precision = Precision::f64;
+  /// Finishes each evaluable reference's own form, its constants freed, as a member (reference_seeds;
+  /// docs/designer.md, "The engines' forms refitted").
+  bool refit_references = true;
+  /// Bounds each member's and evaluable reference's error of a function target with a formula by
+  /// interval arithmetic (Lobe::max_abs_bound; docs/designer.md, "A certified bound").
+  bool certify = true;
   /// Times the front and the references on a GPU (the CLI's is made through specula_gl: the GPU,
   /// or llvmpipe without one); empty: no GPU axis. Used only when measure_cost.
   GpuTimer gpu_timer;

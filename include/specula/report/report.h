@@ -5,11 +5,16 @@
 #include <functional>
 #include <string_view>
 
+#include "specula/design/design.h"
+
 namespace specula::report {
 
 struct Options {
   std::filesystem::path out_dir = "report";
   bool quick = false;
+  /// Times the paper's lobes (F_log, pow) and the designed ones on a GPU for the verdict on the
+  /// paper's premise (the CLI's: an offscreen GL context); empty: the CPU's costs only.
+  design::GpuTimer gpu_timer = {};
   /// Called with a line for each section as it starts.
   std::function<void(std::string_view)> progress = [](std::string_view) {};
 };
