@@ -834,6 +834,7 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
   const std::span<const Samples> first_value(screen.data(), 1);
   std::vector<Screened> screened;
   std::unordered_set<std::string> computed;  // value_signature of every shape kept so far
+  double best_screened = INFINITY;            // the lowest error over the screening grid so far
   for (std::size_t first = 0; first < mine.size(); first += kChunk) {
     if (stopper.cancelled() || stopper.out_of_time()) {
       result.cancelled = stopper.cancelled();
@@ -859,10 +860,17 @@ Result design(const Settings& s, const std::function<void(const Progress&)>& pro
     std::vector<bool> same(last - first);
     for (std::size_t j = 0; j < chunk.size(); ++j)
       same[j] = !stop() && chunk[j].fit.ok() && !computed.insert(signatures[j]).second;
+    // A shape whose error at the middle alone is kKeepWithin times the best of the cheaper shapes
+    // screened before it can never be promising (its error over the grid is at least that): the
+    // rest of the grid is not fitted. The best is of the chunks before, so the same for any
+    // thread count; the promising shapes are those a full screening keeps.
+    const double hopeless = kKeepWithin * best_screened;
     each([&](std::size_t j, const Shape& shape) {
       if (same[j]) chunk[j].fit.worst = INFINITY;
+      else if (chunk[j].fit.ok() && chunk[j].fit.worst >= hopeless) chunk[j].fit.worst = INFINITY;
       else if (chunk[j].fit.ok()) chunk[j].fit = fit_over_grid(shape, screen, s, {}, &chunk[j].fit);
     });
+    for (const Screened& x : chunk) best_screened = std::min(best_screened, x.fit.worst);
     if (stop()) {
       result.cancelled = true;
       break;
