@@ -144,8 +144,8 @@ void validate(const Data& data, const Options& o) {
   if (!(o.enumerate_limit >= 0 && o.enumerate_limit <= R::enumerate_limit))
     throw InvalidArgument(fmt::format("the enumeration limit must be in [0, {}], got {}", R::enumerate_limit,
                                       o.enumerate_limit));
-  if (!(o.snap_tolerance > 0 && o.snap_tolerance <= R::snap_tolerance))
-    throw InvalidField("snap_tolerance", fmt::format("snap_tolerance must be in (0, 1], got {}", o.snap_tolerance));
+  if (o.snap_tolerance && !(*o.snap_tolerance > 0 && *o.snap_tolerance <= R::snap_tolerance))
+    throw InvalidField("snap_tolerance", fmt::format("snap_tolerance must be in (0, 1], got {}", *o.snap_tolerance));
   if (data.target.size() > R::rows)
     throw InvalidArgument(fmt::format("{} data rows; at most {}", data.target.size(), R::rows));
   if (o.max_generations.value_or(0) < 0 || o.max_evaluations.value_or(0) < 0)
@@ -554,7 +554,7 @@ class Search {
     SnapSettings settings;
     settings.metric = options_.metric;
     settings.constants = options_.constants;
-    settings.tolerance = options_.snap_tolerance;
+    settings.tolerance = options_.snap_tolerance.value_or(free_snap_tolerance(options_.metric, problem_.train.size()));
     settings.floor = std::max(rounding_noise(problem_),
                               options_.target_error ? to_loss(options_.metric, *options_.target_error) : 0.0);
     settings.stop = [this] { return stop_requested() != 0 || budget_.cancelled(); };
@@ -571,7 +571,7 @@ class Search {
       if (auto simple = simplified(s.genome, values, problem_.train, problem_.rules)) s.genome = std::move(*simple);
       Individual y{s.genome, canonical_key(s.genome), s.loss, problem_.weights.of(s.genome)};
       y.cancels = problem_.cancels(y.genome);
-      snapped_archive.offer_within(y, options_.snap_tolerance, settings.floor);
+      snapped_archive.offer_within(y, settings.tolerance, settings.floor);
     }
     return copied(snapped_archive.front());
   }
@@ -701,6 +701,11 @@ class Search {
 };
 
 }  // namespace
+
+double free_snap_tolerance(Metric metric, std::size_t rows) {
+  if (metric == Metric::max_abs || metric == Metric::max_rel) return 1e-4;
+  return std::min(1e-3, 1.0 / static_cast<double>(std::max<std::size_t>(rows, 1)));
+}
 
 Result search(const Data& data, const Options& options,
               const std::function<void(const Progress&)>& on_progress) {

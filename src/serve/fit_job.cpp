@@ -128,9 +128,11 @@ void read_options(const Fields& f, fit::Options& o, const Limits& limits) {
   o.islands = static_cast<int>(f.integer_or("islands", o.islands, 1, limits.max_fit_islands));
   o.enumerate_max_size = static_cast<int>(f.integer_or("enumerate_size", o.enumerate_max_size, 0, 15));
   o.snap = f.flag_or("snap", true);
-  o.snap_tolerance = f.number_or("snap_tolerance", o.snap_tolerance);
-  if (!(o.snap_tolerance > 0 && o.snap_tolerance <= 1))
-    fail("snap_tolerance", fmt::format("snap_tolerance {} is outside (0, 1]", o.snap_tolerance));
+  if (f.has("snap_tolerance")) {
+    const double tolerance = f.number_or("snap_tolerance", 0);
+    if (!(tolerance > 0 && tolerance <= 1)) fail("snap_tolerance", fmt::format("snap_tolerance {} is outside (0, 1]", tolerance));
+    o.snap_tolerance = tolerance;
+  }
   o.test_fraction = f.number_or("test_fraction", 0);
   if (!(o.test_fraction >= 0 && o.test_fraction < 1))
     fail("test_fraction", fmt::format("test_fraction {} is outside [0, 1)", o.test_fraction));

@@ -119,9 +119,10 @@ struct Options {
   double choose_factor = 1.5;
   /// Constant snapping (docs/fit.md): each front formula's constants tried as simple numbers (0,
   /// integers, p/q with q ≤ 12, p·s/q for s = π, e, ln 2, √2, √3 and q ≤ 6), each kept where the error rises by
-  /// at most snap_tolerance of itself (or stays below the target error or rounding).
+  /// at most snap_tolerance of itself (or stays below the target error or rounding). Unset: only
+  /// snaps that cost nothing measurable (free_snap_tolerance).
   bool snap = true;
-  double snap_tolerance = 0.01;  ///< in (0, 1]
+  std::optional<double> snap_tolerance;  ///< in (0, 1] where set
   /// Formulas over the data's variables the search starts from besides its own (at most
   /// OptionRanges::starts, each within max_size): their constants are fitted from the values
   /// written, they are simplified like any candidate, and they join the front and the
@@ -136,6 +137,13 @@ struct Options {
 
 /// Rows of named variables and a target. Every column has the same, non-zero length; values
 /// are finite (checked by search()).
+/// The snap tolerance when none is given: a snap costs nothing measurable. For the minimax metrics
+/// (max-abs, max-rel) 10⁻⁴ of the error (the constants stay within 0.1 % of the minimax optimum's
+/// error, as a user asking for a minimax fit expects); for the others min(10⁻³, 1/rows) of the loss — 1/rows is what
+/// one constant fitted to noise lowers it by, on average, so the snapped formula is as likely as
+/// not the truth (noise-free data lands at rounding, where any right snap costs nothing).
+double free_snap_tolerance(Metric metric, std::size_t rows);
+
 struct Data {
   std::vector<std::string> variables;
   std::vector<std::vector<double>> columns;
