@@ -40,13 +40,14 @@ bench: build
 	@build/release/bench/specula_render_bench
 	@build/release/bench/specula_walk_bench
 
-# Symbolic recovery (docs/fit.md): `specula fit` on Nguyen-1…12 as DSR specifies them, 20 s each
-# (about 4-5 minutes on 2 cores), judged by SRBench's symbolic-solution criterion with SymPy; prints
-# the table and the count recovered/12 (bench/fit/nguyen_recovery.py).
+# Symbolic recovery (docs/fit.md): `specula fit` on Nguyen-1…12, Keijzer-1…15 and Livermore-1…23 as
+# DSR specifies them, seeds 1 and 2, 20 s each (about 40 minutes on 2 cores), judged by SRBench's
+# symbolic-solution criterion with SymPy; prints the table and the counts recovered per suite and in
+# all (bench/fit/recovery.py).
 bench-fit: deps
 	@cmake --preset release >/dev/null
 	@cmake --build --preset release --target specula_cli
-	@/usr/bin/python3 bench/fit/nguyen_recovery.py --specula build/release/specula
+	@/usr/bin/python3 bench/fit/recovery.py --specula build/release/specula
 
 # The hostile test (bench/hostile): the release CLI and `specula serve` on loopback against
 # malformed input, user models (files, inline, definition objects), every export compiled, M+ms of

@@ -189,16 +189,86 @@ Tree exponent_constant(double value, bool exact) {
 
 bool is_exact_constant(const Tree& t) { return is_constant(t) && is_exact(leaf_node(t)); }
 
+/// The exact constant equal to `value` (p/q or p·s/q, q ≤ 12), if there is one.
+std::optional<Node> exact_equal_to(double value) {
+  for (std::size_t s = 0; s < kSymbolCount; ++s) {
+    const auto symbol = static_cast<Symbol>(s);
+    for (int q = 1; q <= 12; ++q) {
+      const double p = std::round(value * q / symbol_value(symbol));
+      if (std::abs(p) > 1000) continue;
+      const Node candidate = exact_constant(static_cast<int>(p), q, symbol);
+      if (candidate.value == value) return candidate;
+    }
+  }
+  return std::nullopt;
+}
+
+/// Whether `t` is built of exact constants only (an exact constant, or an elementary one).
+bool is_elementary_constant(const Tree& t) {
+  if (t.kids.empty()) return is_exact_constant(t);
+  return std::all_of(t.kids.begin(), t.kids.end(), is_elementary_constant);
+}
+
+/// The functions whose value at an exact constant is kept as written (pow and sqrt go through power()).
+bool is_elementary_op(Op op) {
+  switch (op) {
+    case Op::exp: case Op::log: case Op::log2: case Op::expm1: case Op::log1p:
+    case Op::sin: case Op::cos: case Op::acos: case Op::asin: return true;
+    default: return false;
+  }
+}
+
+/// An op over exact constants only (exp(−1/2), (2π)^(−1/2), log(3)) is an elementary constant
+/// (docs/fit.md): kept as written, its value no plain double, unless it is an exact constant
+/// itself (4^(1/2) = 2, log(1) = 0). Over other constants it folds to a plain one.
+Tree folded_or_elementary(Tree t) {
+  const bool elementary = std::all_of(t.kids.begin(), t.kids.end(), is_exact_constant);
+  const auto value = folded(t);
+  if (!elementary) return value ? constant(*value) : t;
+  if (!value) return t;
+  if (const auto exact = exact_equal_to(*value)) return exact_tree(*exact);
+  return t;
+}
+
+/// The variables known positive in the simplify() call under way (its `positive` argument).
+thread_local const std::vector<bool>* known_positive = nullptr;
+
+/// Whether t > 0 wherever it is defined, from the known positive variables: exp(·), positive
+/// constants, and sums, products and powers of positive parts.
+bool positive(const Tree& t) {
+  switch (t.op) {
+    case Op::constant: return t.value > 0;
+    case Op::variable: return known_positive != nullptr && t.var < known_positive->size() && (*known_positive)[t.var];
+    case Op::exp: return true;
+    case Op::add:
+    case Op::mul: return std::all_of(t.kids.begin(), t.kids.end(), [](const Tree& k) { return positive(k); });
+    case Op::pow: return positive(t.kids[0]);
+    default: return false;
+  }
+}
+
+Tree exponential(Tree argument);
+std::optional<std::pair<Tree, Tree>> common_factor(const Tree& sum_of_terms);
+
 /// base^exponent, with the exponent a constant (exact if `exact`, exponent_constant).
 Tree power(Tree base, double exponent, bool exact) {
   if (exponent == 0) return constant(1);
   if (exponent == 1) return base;
   const auto whole = [](double v) { return v == std::round(v); };
   const auto even = [&](double v) { return whole(v) && std::fmod(v, 2) == 0; };
+  // (e^a)^b = e^(a·b): e^a > 0, so for every real b.
+  if (base.op == Op::exp) return exponential(product({std::move(base.kids[0]), exponent_constant(exponent, exact)}));
+  // (x³ − x)^0.5 = x^0.5·(x² − 1)^0.5 for x > 0: a positive factor common to every term leaves a
+  // fractional power, where it may meet its like outside ((x/y)^1.5 / √(x³/y³ − x/y) = x/√(x² − y²)).
+  if (base.op == Op::add && !whole(exponent)) {
+    if (auto split = common_factor(base))
+      return product({power(std::move(split->first), exponent, exact), power(std::move(split->second), exponent, exact)});
+  }
   // (c·x)^k = c^k·x^k for whole k, or where every factor is ≥ 0 (a positive constant, an even
   // power): (1.5874·x^4)^1.5 = 2.0000·x^6.
   const auto nonnegative = [&](const Tree& f) {
-    return (is_constant(f) && f.value >= 0) || (f.op == Op::pow && is_constant(f.kids[1]) && even(f.kids[1].value));
+    return (is_constant(f) && f.value >= 0) || (f.op == Op::pow && is_constant(f.kids[1]) && even(f.kids[1].value)) ||
+           positive(f);
   };
   if (base.op == Op::mul && (whole(exponent) || std::all_of(base.kids.begin(), base.kids.end(), nonnegative))) {
     std::vector<Tree> factors;
@@ -210,15 +280,13 @@ Tree power(Tree base, double exponent, bool exact) {
   // are |x|^(a·b): (x^4)^1.5 = x^6, but (x^2)^0.5 = |x|.
   if (base.op == Op::pow && is_constant(base.kids[1])) {
     const double inner = base.kids[1].value;
-    if (whole(exponent) || !whole(inner) || (even(inner) && even(inner * exponent))) {
+    if (whole(exponent) || !whole(inner) || (even(inner) && even(inner * exponent)) || positive(base.kids[0])) {
       const bool inner_exact = is_exact_constant(base.kids[1]);
       return power(std::move(base.kids[0]), inner * exponent, exact && inner_exact);
     }
   }
   Tree t{Op::pow, 0, 0, {std::move(base), exponent_constant(exponent, exact)}};
-  if (is_constant(t.kids[0])) {
-    if (const auto value = folded(t)) return constant(*value);
-  }
+  if (is_constant(t.kids[0])) return folded_or_elementary(std::move(t));
   return t;
 }
 
@@ -248,6 +316,42 @@ Power as_power(Tree factor) {
     return {{}, std::move(factor.kids[0]), factor.kids[1].value, exact};
   }
   return {{}, std::move(factor), 1.0, true};
+}
+
+/// e^a·e^b = e^(a + b): the exponentials among `factors` become one.
+void merge_exponentials(std::vector<Tree>& factors) {
+  const auto is_exp = [](const Tree& f) { return f.op == Op::exp; };
+  if (std::count_if(factors.begin(), factors.end(), is_exp) < 2) return;
+  std::vector<Tree> arguments, others;
+  for (Tree& f : factors) (is_exp(f) ? arguments.push_back(std::move(f.kids[0])) : others.push_back(std::move(f)));
+  others.push_back(exponential(sum(std::move(arguments))));
+  factors = std::move(others);
+}
+
+void write(const Tree& t, std::vector<Node>& out);
+
+std::size_t written_size(const Tree& t) {
+  std::vector<Node> out;
+  write(t, out);
+  return out.size();
+}
+
+/// The product `t` of one sum and other factors, multiplied out where that is strictly smaller:
+/// (x² − x)·x² = x⁴ − x³ (7 nodes, not 9), while 2·(x + y) and x·(x + 1) stay.
+std::optional<Tree> distributed(const Tree& t) {
+  const auto is_sum = [](const Tree& f) { return f.op == Op::add; };
+  if (std::count_if(t.kids.begin(), t.kids.end(), is_sum) != 1) return std::nullopt;
+  const auto sum_at = std::find_if(t.kids.begin(), t.kids.end(), is_sum);
+  std::vector<Tree> terms;
+  for (const Tree& term : sum_at->kids) {
+    std::vector<Tree> factors{term};
+    for (auto f = t.kids.begin(); f != t.kids.end(); ++f)
+      if (f != sum_at) factors.push_back(*f);
+    terms.push_back(product(std::move(factors)));
+  }
+  Tree spread = sum(std::move(terms));
+  if (written_size(spread) < written_size(t)) return spread;
+  return std::nullopt;
 }
 
 Tree product(std::vector<Tree> factors) {
@@ -286,13 +390,21 @@ Tree product(std::vector<Tree> factors) {
     if (is_constant(factor)) coefficient.times(factor);
     else kept.push_back(std::move(factor));
   }
+  merge_exponentials(kept);
+  for (auto it = kept.begin(); it != kept.end();) {  // e^(x − x + 1) = e, a coefficient
+    if (!is_constant(*it)) { ++it; continue; }
+    coefficient.times(*it);
+    it = kept.erase(it);
+  }
   if (kept.empty()) return coefficient.tree();
   if (coefficient.value() == -1 && kept.size() == 1 && kept.front().op == Op::add)  // −(a − b) = b − a
     return negated_terms(std::move(kept.front()));
   sort_by_key(kept);
   if (coefficient.value() != 1) kept.insert(kept.begin(), coefficient.tree());
   if (kept.size() == 1) return std::move(kept.front());
-  return {Op::mul, 0, 0, std::move(kept)};
+  Tree t{Op::mul, 0, 0, std::move(kept)};
+  if (auto spread = distributed(t)) return std::move(*spread);
+  return t;
 }
 
 /// A term as coefficient · rest (an exact 1 for a term without one).
@@ -344,6 +456,75 @@ Tree sum(std::vector<Tree> terms) {
   return {Op::add, 0, 0, std::move(kept)};
 }
 
+/// e^argument: e^(ln x) = x and e^(c·ln x) = x^c for x > 0.
+Tree exponential(Tree argument) {
+  if (argument.op == Op::log && positive(argument.kids[0])) return std::move(argument.kids[0]);
+  if (argument.op == Op::mul && argument.kids.size() == 2 && is_constant(argument.kids[0]) &&
+      argument.kids[1].op == Op::log && positive(argument.kids[1].kids[0])) {
+    const bool exact = is_exact_constant(argument.kids[0]);
+    return power(std::move(argument.kids[1].kids[0]), argument.kids[0].value, exact);
+  }
+  Tree t{Op::exp, 0, 0, {std::move(argument)}};
+  if (is_constant(t.kids[0])) return folded_or_elementary(std::move(t));
+  return t;
+}
+
+/// ln(argument): ln(e^a) = a; for positive parts ln(x^a) = a·ln x, and the log of a product with
+/// an exponential or a power in it is the sum of the factors' logs (ln(2·e^x) = x + ln 2).
+Tree logarithm(Tree argument) {
+  if (argument.op == Op::exp) return std::move(argument.kids[0]);
+  if (argument.op == Op::pow && positive(argument.kids[0]))
+    return product({std::move(argument.kids[1]), logarithm(std::move(argument.kids[0]))});
+  const auto splits = [](const Tree& f) { return f.op == Op::exp || f.op == Op::pow; };
+  if (argument.op == Op::mul && positive(argument) && std::any_of(argument.kids.begin(), argument.kids.end(), splits)) {
+    std::vector<Tree> logs;
+    for (Tree& factor : argument.kids) logs.push_back(logarithm(std::move(factor)));
+    return sum(std::move(logs));
+  }
+  Tree t{Op::log, 0, 0, {std::move(argument)}};
+  if (is_constant(t.kids[0])) return folded_or_elementary(std::move(t));
+  return t;
+}
+
+/// The factors of a term but its coefficient, each as base^exponent with its key.
+std::vector<Power> factors_of(const Tree& term) {
+  Tree rest = coefficient_and_rest(term).second;
+  std::vector<Tree> parts;
+  if (rest.op == Op::mul) parts = std::move(rest.kids);
+  else parts.push_back(std::move(rest));
+  std::vector<Power> out;
+  for (Tree& part : parts) {
+    if (is_constant(part)) continue;
+    out.push_back(as_power(std::move(part)));
+    out.back().key = key_of(out.back().base);
+  }
+  return out;
+}
+
+/// A sum as (its common factor, the sum divided by it): every positive base that each term has,
+/// to the smallest of its exponents (exact where they all are). Nothing where there is none.
+std::optional<std::pair<Tree, Tree>> common_factor(const Tree& sum_of_terms) {
+  std::vector<std::vector<Power>> terms;
+  for (const Tree& term : sum_of_terms.kids) terms.push_back(factors_of(term));
+  std::vector<Tree> common;
+  for (const Power& first : terms.front()) {
+    if (!positive(first.base)) continue;
+    double smallest = first.exponent;
+    bool in_every_term = true, exact = first.exact;
+    for (std::size_t k = 1; k < terms.size() && in_every_term; ++k) {
+      const auto same = std::find_if(terms[k].begin(), terms[k].end(), [&](const Power& p) { return p.key == first.key; });
+      in_every_term = same != terms[k].end();
+      if (in_every_term) smallest = std::min(smallest, same->exponent), exact = exact && same->exact;
+    }
+    if (in_every_term && smallest != 0) common.push_back(power(first.base, smallest, exact));
+  }
+  if (common.empty()) return std::nullopt;
+  Tree factor = product(std::move(common));
+  std::vector<Tree> divided;
+  for (const Tree& term : sum_of_terms.kids) divided.push_back(product({term, power(factor, -1, true)}));
+  return std::make_pair(std::move(factor), sum(std::move(divided)));
+}
+
 /// Whether t is written with a leading minus: a product with a negative coefficient, or a sum
 /// whose every term is so.
 bool reads_negative(const Tree& t) {
@@ -364,7 +545,8 @@ Tree with_symmetry(Tree t) {
 Tree canonical(Tree t) {
   for (Tree& kid : t.kids) kid = canonical(std::move(kid));
   const bool all_constant = !t.kids.empty() && std::all_of(t.kids.begin(), t.kids.end(), [](const Tree& k) { return is_constant(k); });
-  if (all_constant && t.op != Op::add && t.op != Op::mul) {
+  if (all_constant && t.op != Op::add && t.op != Op::mul && t.op != Op::pow && t.op != Op::sqrt) {
+    if (is_elementary_op(t.op)) return folded_or_elementary(std::move(t));
     if (const auto value = folded(t)) return constant(*value);
   }
   switch (t.op) {
@@ -378,15 +560,20 @@ Tree canonical(Tree t) {
     case Op::sqrt: return power(std::move(t.kids[0]), 0.5, true);
     case Op::pow:
       if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value, is_exact_constant(t.kids[1]));
+      // (e^a)^u = e^(a·u), but a constant's power stays one: exp(-0.5) ^ x ^ 2 is a node smaller.
+      if (t.kids[0].op == Op::exp && !is_elementary_constant(t.kids[0]))
+        return exponential(product({std::move(t.kids[0].kids[0]), std::move(t.kids[1])}));
       return t;
     case Op::abs:
+      if (positive(t.kids[0])) return std::move(t.kids[0]);
+      return with_symmetry(std::move(t));
     case Op::sin:
     case Op::cos: return with_symmetry(std::move(t));
+    case Op::log: return logarithm(std::move(t.kids[0]));
+    case Op::exp: return exponential(std::move(t.kids[0]));
     case Op::min:
     case Op::max:
-    case Op::log:
     case Op::log2:
-    case Op::exp:
     case Op::acos:
     case Op::expm1:
     case Op::log1p:
@@ -470,8 +657,11 @@ void write_product(const Tree& t, std::vector<Node>& out) {
   if (negated_once) coefficient = 1;
   std::size_t written = 0;
   if (coefficient != 1 || numerator.empty()) {
+    // The 1 of 1/√(2π) is exact, as the constant it divides: a fit must not move it.
+    const bool elementary = coefficient == 1 && std::all_of(t.kids.begin(), t.kids.end(), is_elementary_constant);
     out.push_back(coefficient == coefficient_node.value && coefficient_node.op == Op::constant ? coefficient_node
-                                                                                              : Node{Op::constant, 0, coefficient});
+                  : elementary ? exact_constant(1, 1, Symbol::one)
+                               : Node{Op::constant, 0, coefficient});
     ++written;
   }
   for (const auto& [base, exponent] : numerator) {
@@ -511,7 +701,11 @@ Expression simplified(const Expression& e) {
 
 }  // namespace
 
-Expression simplify(const Expression& e) {
+Expression simplify(const Expression& e, const std::vector<bool>& positive) {
+  struct Facts {  // the sign facts hold for this call only
+    explicit Facts(const std::vector<bool>& p) { known_positive = &p; }
+    ~Facts() { known_positive = nullptr; }
+  } facts(positive);
   try {
     return simplified(e);
   } catch (const InvalidArgument&) {  // a folded constant overflowed: the formula is kept as it is

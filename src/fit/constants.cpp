@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "projection.h"
 
@@ -154,7 +155,9 @@ void levenberg_marquardt(Projection& p, double cost) {
   }
 }
 
-std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
+namespace {
+
+std::vector<double> fitted_values(Genome& g, const Rows& rows, Constants mode, Metric metric) {
   thread_local Workspace workspace;
   Projection p(g, rows, workspace);
   const double cost = p.solve_linear();
@@ -165,6 +168,22 @@ std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, M
   // any large change in the linear constants.
   if (p.constant_count() > 0) p.evaluate();
   return p.value();
+}
+
+bool has_finite_constants(const Genome& g) {
+  return std::ranges::all_of(g, [](const expr::Node& n) { return n.op != expr::Op::constant || std::isfinite(n.value); });
+}
+
+}  // namespace
+
+/// A fit that leaves a constant infinite (a linear solve over a degenerate column, a step that
+/// overflowed) has failed: the constants go back to where they were and every prediction is NaN.
+std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
+  const Genome before = g;
+  std::vector<double> predicted = fitted_values(g, rows, mode, metric);
+  if (has_finite_constants(g)) return predicted;
+  g = before;
+  return std::vector<double>(rows.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 FittedFormula fit_formula_constants(const expr::Expression& formula, const Data& data, Metric metric) {

@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <numeric>
+#include <span>
 
 #include "genome.h"
 #include "specula/fit/fit.h"
@@ -159,9 +161,28 @@ double measure(Metric metric, std::span<const double> predicted, std::span<const
 
 SizeWeights::SizeWeights() { weight_.fill(1); }
 
+/// An elementary constant (an op over exact constants only: exp(−1/2), (2π)^(−1/2)) is a constant:
+/// it counts as one leaf, as a snapped 3π/4 does.
 int SizeWeights::of(std::span<const expr::Node> nodes) const {
+  struct Subtree {
+    int size;
+    bool exact;
+  };
+  std::vector<Subtree> stack;
+  for (const auto& n : nodes) {
+    const auto operands = static_cast<std::size_t>(expr::arity(n.op));
+    if (operands > stack.size()) throw InvalidArgument("SizeWeights::of: not a postfix formula");
+    int size = of(n.op);
+    bool exact = operands > 0 || expr::is_exact(n);
+    for (std::size_t k = stack.size() - operands; k < stack.size(); ++k) {
+      size += stack[k].size;
+      exact = exact && stack[k].exact;
+    }
+    stack.resize(stack.size() - operands);
+    stack.push_back({exact ? of(Op::constant) : size, exact});
+  }
   int size = 0;
-  for (const auto& n : nodes) size += of(n.op);
+  for (const Subtree& t : stack) size += t.size;
   return size;
 }
 
@@ -248,18 +269,46 @@ double rounded_to(double v, int digits) {
 
 }  // namespace
 
+/// The rounding step of v's shortest decimal (0.001 for 12.345, 1 for 1200): the last digit that
+/// reads v back exactly.
+double decimal_step(double v) {
+  for (int digits = 1; digits <= 17; ++digits) {
+    const std::string text = fmt::format("{:.{}e}", v, digits - 1);
+    if (std::strtod(text.c_str(), nullptr) == v) return std::pow(10.0, std::floor(std::log10(std::abs(v))) - digits + 1);
+  }
+  return 0;
+}
+
+double noise_floor(std::span<const double> target, Metric metric, double best_loss) {
+  double mean_square = 0;
+  std::vector<double> steps;
+  for (double y : target) {
+    mean_square += y * y / static_cast<double>(target.size());
+    if (y != 0) steps.push_back(decimal_step(y));
+  }
+  const bool relative = metric == Metric::mean_relative || metric == Metric::max_rel || metric == Metric::r2;
+  const double floor = relative ? 1e-10 : 1e-10 * std::sqrt(mean_square);
+  if (metric != Metric::rms || steps.empty()) return floor;
+  // RMS only: the rounding of the decimals (uniform, step/√12), where the best formula does not fit
+  // below it. The median step: 12.300 reads as 12.3, one value in ten, and its step is no guide.
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double decimals = steps[steps.size() / 2] / std::sqrt(12.0);
+  return best_loss >= 0.5 * decimals ? std::max(floor, 1.25 * decimals) : floor;
+}
+
 std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice, double factor,
-                   double target_rms) {
+                   double noise_floor) {
   if (front.empty()) throw InvalidArgument("cannot choose from an empty front");
   const auto ranking_error = [metric](const Candidate& c) {
-    return to_loss(metric, c.test_error.value_or(c.train_error));
+    const double loss = to_loss(metric, c.test_error.value_or(c.train_error));
+    return c.printed_error ? std::max(loss, to_loss(metric, *c.printed_error)) : loss;
   };
   std::size_t best = 0;
   for (std::size_t i = 1; i < front.size(); ++i)
     if (ranking_error(front[i]) < ranking_error(front[best])) best = i;
   if (choice == Choice::best) return best;
   if (choice == Choice::knee) return knee(front, ranking_error);
-  const double tolerance = std::max(factor * ranking_error(front[best]), 1e-10 * target_rms);
+  const double tolerance = std::max(factor * ranking_error(front[best]), noise_floor);
   for (std::size_t i = 0; i < front.size(); ++i)
     if (ranking_error(front[i]) <= tolerance) return i;
   return best;

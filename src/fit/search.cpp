@@ -185,7 +185,8 @@ Problem make_problem(const Data& data, const Options& o) {
   }
   for (const auto& c : p.train_columns) p.train.columns.emplace_back(c);
   p.train.target = p.train_target;
-  p.rules = {o.operators, o.constants, o.weights};
+  const std::vector<std::span<const double>> all_rows(data.columns.begin(), data.columns.end());
+  p.rules = {o.operators, o.constants, o.weights, positive_columns(all_rows)};
   if (o.metric == Metric::mean_relative || o.metric == Metric::max_rel)
     for (double y : p.train_target) p.train.weights.push_back(y != 0 ? 1 / (y * y) : 1.0);
   return p;
@@ -474,15 +475,21 @@ constexpr int kRestartEpochs = 20;
 constexpr std::size_t kMigrants = 5;
 constexpr std::size_t kEnumerationChunk = 512;
 
+/// The metric of `formula` on the test rows where there are some, else on the training rows.
+double held_out_error(const expr::Expression& formula, const Problem& p) {
+  const bool test = !p.test_target.empty();
+  const auto& columns = test ? p.test_columns : p.train_columns;
+  const std::vector<std::span<const double>> spans(columns.begin(), columns.end());
+  std::vector<double> predicted(test ? p.test_target.size() : p.train_target.size());
+  expr::evaluate_batch(formula, spans, predicted);
+  return measure(p.metric, predicted, test ? p.test_target : p.train_target);
+}
+
 Candidate candidate(const Individual& x, const Problem& p, const Data& data) {
   Candidate c{expr::Expression(x.genome, data.variables), x.size,
               p.metric == Metric::r2 ? 1 - x.loss : x.loss, std::nullopt};
-  if (!p.test_target.empty()) {
-    std::vector<std::span<const double>> columns(p.test_columns.begin(), p.test_columns.end());
-    std::vector<double> predicted(p.test_target.size());
-    expr::evaluate_batch(c.formula, columns, predicted);
-    c.test_error = measure(p.metric, predicted, p.test_target);
-  }
+  if (!p.test_target.empty()) c.test_error = held_out_error(c.formula, p);
+  c.printed_error = held_out_error(rounded(c.formula, kPrintedDigits), p);
   return c;
 }
 
@@ -530,10 +537,11 @@ class Search {
                                 ? fmt::format("the search stopped ({}) before any formula was evaluated",
                                               to_string(*stopped_by_))
                                 : std::string("no formula could be evaluated on these data"));
-    double mean_square = 0;
-    for (double y : data_.target) mean_square += y * y / static_cast<double>(data_.target.size());
+    double best_loss = INFINITY;
+    for (const Candidate& c : result.front)
+      best_loss = std::min(best_loss, to_loss(options_.metric, c.test_error.value_or(c.train_error)));
     result.chosen = choose(result.front, options_.metric, options_.choice, options_.choose_factor,
-                           std::sqrt(mean_square));
+                           noise_floor(data_.target, options_.metric, best_loss));
     result.evaluations = evaluations_;
     result.generations = generations_;
     result.seconds = budget_.seconds();

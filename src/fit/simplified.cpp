@@ -19,12 +19,24 @@ bool allowed(const expr::Node& n, const SimplifyRules& rules) {
   return std::find(rules.operators.begin(), rules.operators.end(), n.op) != rules.operators.end();
 }
 
-bool allowed(const Genome& g, const SimplifyRules& rules) {
-  return std::all_of(g.begin(), g.end(), [&](const expr::Node& n) { return allowed(n, rules); });
-}
-
 bool has(const SimplifyRules& rules, Op op) {
   return std::find(rules.operators.begin(), rules.operators.end(), op) != rules.operators.end();
+}
+
+/// Every node allowed, or inside an elementary constant (an op over exact constants only, such as
+/// 1/√(2π)): a constant, whichever operators write it; and a division by one is a product.
+bool allowed(const Genome& g, const SimplifyRules& rules) {
+  std::vector<bool> exact_only;  // per subtree on the stack
+  for (const expr::Node& n : g) {
+    const auto operands = static_cast<std::size_t>(expr::arity(n.op));
+    const bool by_constant = n.op == Op::div && exact_only.back() && has(rules, Op::mul);
+    bool exact = operands > 0 || expr::is_exact(n);
+    for (std::size_t k = exact_only.size() - operands; k < exact_only.size(); ++k) exact = exact && exact_only[k];
+    exact_only.resize(exact_only.size() - operands);
+    exact_only.push_back(exact);
+    if (!(operands > 0 && exact) && !by_constant && !allowed(n, rules)) return false;
+  }
+  return true;
 }
 
 /// The integer power x^k the search may not write, as it may: x·x·…·x for 2 ≤ k ≤ kMaxExpanded,
@@ -103,9 +115,16 @@ bool relies_on_cancellation(const Genome& g, const Rows& rows) {
   return false;
 }
 
+std::vector<bool> positive_columns(std::span<const std::span<const double>> columns) {
+  std::vector<bool> out;
+  for (const auto& column : columns)
+    out.push_back(!column.empty() && std::all_of(column.begin(), column.end(), [](double v) { return v > 0; }));
+  return out;
+}
+
 std::optional<Genome> simplified(const Genome& g, std::span<const double> predicted, const Rows& rows,
                                  const SimplifyRules& rules) {
-  const expr::Expression simple = expr::simplify(expr::Expression(g, slot_names(rows.columns.size())));
+  const expr::Expression simple = expr::simplify(expr::Expression(g, slot_names(rows.columns.size())), rules.positive);
   Genome out = powers_as_products(Genome(simple.nodes().begin(), simple.nodes().end()), rules);
   if (expr::same_nodes(out, g) || rules.weights.of(out) > rules.weights.of(g) || !allowed(out, rules)) return std::nullopt;
   std::vector<double> values(predicted.size());

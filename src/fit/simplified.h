@@ -18,7 +18,12 @@ struct SimplifyRules {
   std::vector<expr::Op> operators;
   Constants constants = Constants::fitted;
   SizeWeights weights;
+  /// Per variable: positive on every row of the data, so the sign rules of expr::simplify hold.
+  std::vector<bool> positive;
 };
+
+/// Per column: whether every value is > 0.
+std::vector<bool> positive_columns(std::span<const std::span<const double>> columns);
 
 /// Names v0, v1, … for the variables of a genome seen as an expr::Expression.
 std::vector<std::string> slot_names(std::size_t count);

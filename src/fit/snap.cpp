@@ -1,5 +1,6 @@
 #include "snap.h"
 
+#include "identify.h"
 #include "simplified.h"
 
 #include <cmath>
@@ -36,6 +37,20 @@ void add_candidate(std::vector<Node>& out, double value, int denominator, Symbol
   for (const Node& seen : out)
     if (seen.value == candidate.value) return;  // 2/4 is 1/2, already tried
   out.push_back(candidate);
+}
+
+/// What a constant of `value` is tried as, simplest first: snap_candidates() as the mode allows,
+/// then (in a formula that fits exactly) the elementary closed forms (identify.h).
+std::vector<Genome> candidates(double value, Constants constants, bool fits_exactly) {
+  std::vector<Genome> out;
+  for (const Node& candidate : snap_candidates(value)) {
+    if (constants == Constants::integer && candidate.denominator > 1) continue;
+    if (candidate.symbol != Symbol::one && (constants == Constants::integer || !fits_exactly)) continue;
+    out.push_back({candidate});
+  }
+  if (constants == Constants::fitted && fits_exactly)
+    for (Genome& form : elementary_constants(value)) out.push_back(std::move(form));
+  return out;
 }
 
 }  // namespace
@@ -75,13 +90,9 @@ Snapped snapped(const Genome& g, const Rows& rows, const SnapSettings& settings)
   int refits_left = settings.max_refits;
   for (std::size_t i = 0; i < current.genome.size() && refits_left > 0; ++i) {
     if (current.genome[i].op != Op::constant || expr::is_exact(current.genome[i])) continue;
-    for (const Node& candidate : snap_candidates(current.genome[i].value)) {
-      if (settings.constants == Constants::integer && candidate.denominator > 1) continue;
-      if (candidate.symbol != Symbol::one && (settings.constants == Constants::integer || !fits_exactly)) continue;
+    for (const Genome& candidate : candidates(current.genome[i].value, settings.constants, fits_exactly)) {
       if (--refits_left < 0 || settings.stop()) return current;
-      Genome trial = current.genome;
-      trial[i] = candidate;
-      Snapped tried = refitted(std::move(trial), rows, settings);
+      Snapped tried = refitted(replaced(current.genome, i, i, candidate), rows, settings);
       if (tried.loss <= allowed && settings.acceptable(tried.genome)) {
         current = std::move(tried);
         break;

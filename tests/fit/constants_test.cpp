@@ -169,5 +169,31 @@ TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
   EXPECT_TRUE(std::any_of(predicted.begin(), predicted.end(), [](double v) { return !std::isfinite(v); }));
 }
 
+// A linear constant at 1e308 whose least-squares move is a finite 1.6e308 would land past the largest
+// double (the data ask for 2.6e308): the fit has failed, the constants stay where they were and the
+// predictions are NaN, so no caller builds an expression with an infinite constant (issue 42: `fit`
+// exited 2, "expression constant -inf is not finite", on good data).
+Columns scaled_exp(double coefficient_over_1e300) {
+  Columns c;
+  for (int i = 0; i < 10; ++i) {
+    c.x.push_back(-690.8 - 0.01 * i);
+    c.y.push_back(0);
+    c.target.push_back(coefficient_over_1e300 * (std::exp(c.x.back()) * 1e300));
+  }
+  return c;
+}
+
+TEST(FitConstants, AFitThatWouldLeaveAnInfiniteConstantFailsInstead) {
+  const Columns beyond = scaled_exp(2.6e8);
+  Genome g = genome_of("1e308 * exp(x)");
+  const auto predicted = fit_constants(g, beyond.rows(), Constants::fitted);
+  EXPECT_EQ(g[0].value, 1e308);
+  EXPECT_TRUE(std::all_of(predicted.begin(), predicted.end(), [](double v) { return std::isnan(v); }));
+  const Columns within = scaled_exp(2.6e7);  // control: a representable coefficient is fitted
+  Genome tame = genome_of("1e308 * exp(x)");
+  const auto fitted = fit_constants(tame, within.rows(), Constants::fitted);
+  EXPECT_NEAR(fitted[0], within.target[0], 1e-9 * within.target[0]);
+}
+
 }  // namespace
 }  // namespace specula::fit

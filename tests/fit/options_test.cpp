@@ -153,17 +153,45 @@ TEST(Choose, ParsimoniousKneeAndBest) {
                                      candidate(5, 0.006839),  candidate(9, 0.006503),
                                      candidate(10, 0.001128), candidate(12, 0.000280),
                                      candidate(18, 0.000273)};
-  EXPECT_EQ(choose(front, Metric::rms, Choice::parsimonious, 1.5, 100), 5u);  // size 12
-  EXPECT_EQ(choose(front, Metric::rms, Choice::best, 1.5, 100), 6u);
-  EXPECT_EQ(choose(front, Metric::rms, Choice::knee, 1.5, 100), 2u);  // size 5
+  EXPECT_EQ(choose(front, Metric::rms, Choice::parsimonious, 1.5, 1e-8), 5u);  // size 12
+  EXPECT_EQ(choose(front, Metric::rms, Choice::best, 1.5, 1e-8), 6u);
+  EXPECT_EQ(choose(front, Metric::rms, Choice::knee, 1.5, 1e-8), 2u);  // size 5
 }
 
 TEST(Choose, PrefersTestErrorAndTreatsR2AsHigherIsBetter) {
   const std::vector<Candidate> overfit{candidate(3, 0.1, 0.1), candidate(9, 0.01, 0.5)};
-  EXPECT_EQ(choose(overfit, Metric::rms, Choice::best, 1.5, 1), 0u);
+  EXPECT_EQ(choose(overfit, Metric::rms, Choice::best, 1.5, 1e-10), 0u);
   const std::vector<Candidate> r2{candidate(3, 0.9), candidate(7, 0.999)};
-  EXPECT_EQ(choose(r2, Metric::r2, Choice::best, 1.5, 1), 1u);
-  EXPECT_THROW(choose({}, Metric::rms, Choice::best, 1.5, 1), InvalidArgument);
+  EXPECT_EQ(choose(r2, Metric::r2, Choice::best, 1.5, 1e-10), 1u);
+  EXPECT_THROW(choose({}, Metric::rms, Choice::best, 1.5, 1e-10), InvalidArgument);
+}
+
+// Issue 42's overfit: a size-23 formula whose large constants cancel fits the rows a little better
+// than the size-15 truth, but printed with 6 digits its error is 1e-4: ranked by the printed
+// error, the truth is chosen. The control: without the printed error the overfit wins.
+TEST(Choose, RanksByThePrintedErrorSoCancellingConstantsCountAgainst) {
+  Candidate truth = candidate(15, 1e-12), overfit = candidate(23, 1e-14);
+  truth.printed_error = 1e-12;
+  EXPECT_EQ(choose({truth, overfit}, Metric::rms, Choice::parsimonious, 1.5, 1e-16), 1u);
+  overfit.printed_error = 1e-4;
+  EXPECT_EQ(choose({truth, overfit}, Metric::rms, Choice::parsimonious, 1.5, 1e-16), 0u);
+  EXPECT_EQ(choose({truth, overfit}, Metric::rms, Choice::best, 1.5, 1e-16), 0u);
+}
+
+// The noise floor: 1e-10 of the RMS for exact data, the rounding of the decimals (3 decimals:
+// 0.001/√12 = 2.9e-4, times 1.25) where the best formula does not fit below it; integers that an
+// exact formula fits to rounding (x(x + 1)/2) keep the 1e-10 floor.
+TEST(NoiseFloor, IsTheDecimalsRoundingWhereTheBestFormulaStopsThere) {
+  std::vector<double> three_decimals, integers;
+  for (int i = 1; i <= 50; ++i) {
+    three_decimals.push_back(std::round(1000 * (0.2 * i + 0.37 / i)) / 1000);
+    integers.push_back(i * (i + 1) / 2.0);
+  }
+  const double rounding = 0.001 / std::sqrt(12.0);
+  EXPECT_NEAR(noise_floor(three_decimals, Metric::rms, 2.8e-4), 1.25 * rounding, 0.05 * rounding);
+  EXPECT_LT(noise_floor(three_decimals, Metric::rms, 1e-15), 1e-8);  // an exact fit: no rounding floor
+  EXPECT_LT(noise_floor(integers, Metric::rms, 1e-15), 1e-7);
+  EXPECT_LT(noise_floor(three_decimals, Metric::max_abs, 2.8e-4), 1e-8);  // RMS only
 }
 
 TEST(Rounded, KeepsSignificantDigits) {

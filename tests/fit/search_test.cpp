@@ -484,6 +484,30 @@ TEST(Search, ByDefaultASnapCostsNoMeasurableAccuracy) {
   EXPECT_NE(formula.find(" / "), std::string::npos) << formula << ": a snapped fraction";
 }
 
+// The normal density exp(−x²/2)/√(2π) fitted from 0.4·0.6^(x·x): the fitted 0.398942 and 0.606531
+// become their closed forms (identify.h), counted as constants (size 7, as the decimals' formula).
+// The control: with snapping off the decimals stay.
+std::pair<std::string, int> chosen_for_the_normal_density(bool snap) {
+  const Data d = sampled("exp(-x^2/2) / sqrt(2*pi)", -2, 2, 41);
+  Options o = quick(0);
+  o.enumerate_max_size = 1;
+  o.operators = parse_operators("+,*,^");
+  o.starts = {"0.4 * 0.6 ^ (x * x)"};
+  o.snap = snap;
+  const Result r = search(d, o);
+  return {expr::to_infix(r.front[r.chosen].formula), r.front[r.chosen].size};
+}
+
+TEST(Search, ElementaryConstantsPrintInClosedForm) {
+  const auto [snapped, size] = chosen_for_the_normal_density(true);
+  EXPECT_EQ(snapped, "exp(-0.5) ^ x ^ 2 / sqrt(2 * pi)");
+  EXPECT_EQ(size, 7);
+  const auto [fitted, fitted_size] = chosen_for_the_normal_density(false);
+  EXPECT_EQ(fitted.find("pi"), std::string::npos) << fitted;
+  EXPECT_NE(fitted.find("0.398942"), std::string::npos) << fitted;
+  EXPECT_EQ(fitted_size, 7);
+}
+
 // The outside check's bad formulas, given as starts, do not reach the front: cancellations (of
 // constants, of huge terms), garbage terms, integers and halves in disguise.
 const std::vector<std::string> kBadStarts = {

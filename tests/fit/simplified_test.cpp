@@ -40,7 +40,7 @@ Genome simplified_or_same(const Genome& g, std::span<const double> predicted, co
 }
 
 SimplifyRules all_operators() {
-  return {{expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div, expr::Op::pow, expr::Op::sqrt}, Constants::fitted, {}};
+  return {{expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div, expr::Op::pow, expr::Op::sqrt}, Constants::fitted, {}, {}};
 }
 
 TEST(Simplified, ReplacesAFormulaThatComputesTheSame) {
@@ -54,13 +54,13 @@ TEST(Simplified, ReplacesAFormulaThatComputesTheSame) {
 TEST(Simplified, WritesPowersAsProductsWhenTheOperatorsHaveNoPower) {
   const Genome g = genome("v0 - (-2 * v0 - 3) / (v0 * v0 + 1)");
   const Case c({0.5, 1, 2, 3}, g);
-  const SimplifyRules no_power{{expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div}, Constants::fitted, {}};
+  const SimplifyRules no_power{{expr::Op::add, expr::Op::sub, expr::Op::mul, expr::Op::div}, Constants::fitted, {}, {}};
   EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, no_power)), "v0 + (2 * v0 + 3) / (v0 * v0 + 1)");
   EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, all_operators())), "v0 + (2 * v0 + 3) / (v0 ^ 2 + 1)");
   const Genome reciprocal = genome("v0 / (v0 * v0 * v0)");  // v0^-2: 1 / (v0 · v0)
   const Case r({0.5, 1, 2, 3}, reciprocal);
   EXPECT_EQ(text(simplified_or_same(reciprocal, r.predicted, r.rows, no_power)), "1 / (v0 * v0)");
-  const SimplifyRules no_division{{expr::Op::add, expr::Op::mul}, Constants::fitted, {}};  // the control
+  const SimplifyRules no_division{{expr::Op::add, expr::Op::mul}, Constants::fitted, {}, {}};  // the control
   EXPECT_EQ(text(simplified_or_same(reciprocal, r.predicted, r.rows, no_division)), "v0 / (v0 * v0 * v0)");
 }
 
@@ -136,6 +136,21 @@ TEST(Simplified, NeverGrowsAFormula) {
   const Genome g = genome("v0 ^ -2");  // written back it would be 1 / v0 ^ 2, two nodes more
   const Case c({0.5, 1, 2}, g);
   EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, all_operators())), "v0 ^ -2");
+}
+
+// A variable positive on every row is positive: the sign rules apply (√(v0²)·log(v0³) is 3·v0·log v0
+// there), and a column with a row ≤ 0 gives no such fact (the control keeps the formula).
+TEST(Simplified, UsesTheSignsTheDataShow) {
+  const Genome g = genome("sqrt(v0 ^ 2) * log(v0 ^ 3)");
+  const Case c({0.5, 1.5, 2, 3}, g);
+  SimplifyRules rules = all_operators();
+  rules.operators.push_back(expr::Op::log);
+  rules.positive = positive_columns(c.rows.columns);
+  EXPECT_EQ(text(simplified_or_same(g, c.predicted, c.rows, rules)), "3 * v0 * log(v0)");
+  const Case signed_rows({-0.5, 1.5, 2, 3}, g);
+  rules.positive = positive_columns(signed_rows.rows.columns);
+  EXPECT_EQ(rules.positive, std::vector<bool>{false});
+  EXPECT_EQ(text(simplified_or_same(g, signed_rows.predicted, signed_rows.rows, rules)), text(g));
 }
 
 }  // namespace

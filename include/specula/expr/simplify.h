@@ -12,13 +12,18 @@
 // the same on its data. simplify() always terminates: a bounded number of passes, each linear in
 // the expression's size up to the sorting of sums and products.
 #include <span>
+#include <vector>
 
 #include "specula/expr/expr.h"
 
 namespace specula::expr {
 
-/// `e` simplified (same variables, in the same order).
-Expression simplify(const Expression& e);
+/// `e` simplified (same variables, in the same order). `positive[v]` says that variable v is
+/// positive wherever the expression is used (a fit's data show it on every row): the rewrites that
+/// need a sign then hold — (x^a)^b = x^(a·b), √(x²) = x, log(x^a) = a·log x, exp(a·log x) = x^a,
+/// |x| = x, and a sum's common factor leaving a fractional power, (x³ − x)^0.5 = x^0.5·(x² − 1)^0.5.
+/// Those that need none always apply: log(exp a) = a, (e^a)^b = e^(a·b).
+Expression simplify(const Expression& e, const std::vector<bool>& positive = {});
 
 /// True if a[r] and b[r] agree for every r: |a − b| ≤ tolerance·max(|a|, |b|), or both the same
 /// non-finite value.

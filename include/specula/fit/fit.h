@@ -67,9 +67,9 @@ std::optional<Split> split_named(std::string_view name);  // "random", "last"
 std::string_view split_name(Split split);
 
 /// Which formula of the front is reported as the answer.
-///  parsimonious: the smallest whose error (test error when there is a test set) is within
-///                `choose_factor` of the front's best, or below 1e-10·rms(y) — accuracy first,
-///                then size.
+///  parsimonious: the smallest whose error (test error when there is a test set; the printed
+///                formula's where that is larger) is within `choose_factor` of the front's best,
+///                or below the data's noise floor (noise_floor()) — accuracy first, then size.
 ///  knee:         the point furthest below the chord from the smallest to the most accurate
 ///                formula, in (size, log error) scaled to the unit square.
 ///  best:         the lowest error.
@@ -155,7 +155,14 @@ struct Candidate {
   int size = 0;
   double train_error = 0;
   std::optional<double> test_error;
+  /// The error (on the test rows where there are some) of the formula as printed: its fitted
+  /// constants rounded to kPrintedDigits significant digits. Large constants that cancel lose
+  /// their accuracy there; the choice ranks by the larger of the two.
+  std::optional<double> printed_error = std::nullopt;
 };
+
+/// The significant digits the tables print a fitted constant with.
+inline constexpr int kPrintedDigits = 6;
 
 struct Progress {
   double elapsed_s = 0;
@@ -198,9 +205,16 @@ struct FittedFormula {
 /// constants.
 FittedFormula fit_formula_constants(const expr::Expression& formula, const Data& data, Metric metric);
 
-/// The index of the formula `choice` picks from a non-empty front (errors in `metric`).
+/// The index of the formula `choice` picks from a non-empty front (errors in `metric`, each
+/// formula's the larger of its error and its printed error). `noise_floor` (a loss): errors below
+/// it are all "fits the data", among which parsimony takes the smallest.
 std::size_t choose(const std::vector<Candidate>& front, Metric metric, Choice choice,
-                   double factor, double target_rms);
+                   double factor, double noise_floor);
+
+/// The loss below which a formula fits `target` to its noise: 1e-10 of its RMS, or the rounding
+/// of its decimals (values with 3 decimals: 0.001/√12) where `best_loss`, the front's best, does
+/// not go below that (exact data that happen to be round numbers go below it).
+double noise_floor(std::span<const double> target, Metric metric, double best_loss);
 
 /// `e` with every constant rounded to `digits` significant digits, for display (an exact constant,
 /// 1/3 or π/4, stays as it is).
