@@ -560,6 +560,7 @@ Tree canonical(Tree t) {
     case Op::sqrt: return power(std::move(t.kids[0]), 0.5, true);
     case Op::pow:
       if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value, is_exact_constant(t.kids[1]));
+      if (is_constant(t.kids[0], 1)) return std::move(t.kids[0]);  // 1^u = 1
       // (e^a)^u = e^(a·u), but a constant's power stays one: exp(-0.5) ^ x ^ 2 is a node smaller.
       if (t.kids[0].op == Op::exp && !is_elementary_constant(t.kids[0]))
         return exponential(product({std::move(t.kids[0].kids[0]), std::move(t.kids[1])}));

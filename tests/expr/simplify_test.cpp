@@ -133,6 +133,7 @@ TEST(Simplify, KeepsAFormulaWhoseConstantsWouldOverflow) {
 TEST(Simplify, LogsOfExponentialsAndPowersOfExponentialsNeedNoSign) {
   EXPECT_EQ(simplified("log(sqrt(exp(x)))"), "0.5 * x");
   EXPECT_EQ(simplified("log(exp(x + y))"), "x + y");
+  EXPECT_EQ(simplified("1 ^ y / x"), "1 / x");  // a fit's Keijzer-14: a snapped 1 to a power
   EXPECT_EQ(simplified("exp(x) ^ 2 * exp(-2 * x)"), "1");
   EXPECT_EQ(simplified("x + x * log(exp(x + x ^ 3) ^ (x + 1))"), "x + x * (x + 1) * (x + x ^ 3)");  // a fit's Nguyen-3
   // Controls: the log of a power and √(x²) keep their form where x may be negative.
