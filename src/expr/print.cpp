@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <string>
+#include <vector>
 
 #include "specula/expr/expr.h"
 
@@ -15,8 +16,15 @@ namespace {
 enum Precedence { kSum = 1, kProduct = 2, kNegation = 3, kPower = 4, kAtom = 5 };
 
 struct Fragment {
+  Fragment() = default;
+  Fragment(std::string t, int p = kAtom) : text(std::move(t)), precedence(p) {}
   std::string text;
   int precedence = kAtom;
+  /// Built of exact constants only (set by render()).
+  bool exact_only = false;
+  /// An exact constant written as a decimal (0.5), as the fraction it is ("1 / 2"): how the infix
+  /// writes it inside an elementary constant, where a CAS must read it exactly (exp(-1 / 2)).
+  std::string fraction{};
 };
 
 using Operands = std::span<const Fragment>;
@@ -26,7 +34,9 @@ std::string render(const Expression& e, Combine combine) {
   std::vector<Fragment> stack;
   for (const Node& node : e.nodes()) {
     const auto operands = static_cast<std::size_t>(arity(node.op));
-    Fragment combined = combine(node, Operands(stack).last(operands), e);
+    const Operands these = Operands(stack).last(operands);
+    Fragment combined = combine(node, these, e);
+    combined.exact_only = is_exact(node) || (operands > 0 && std::ranges::all_of(these, &Fragment::exact_only));
     stack.resize(stack.size() - operands);
     stack.push_back(std::move(combined));
   }
@@ -73,8 +83,11 @@ struct ExactTexts {
 Fragment exact(const Node& node, const ExactTexts& texts) {
   const int p = std::abs(int(node.numerator)), q = node.denominator;
   // Halves, quarters, fifths, eighths and tenths read best as the decimals they are: 0.5, 0.25.
-  if (node.symbol == Symbol::one && (q == 2 || q == 4 || q == 5 || q == 8 || q == 10))
-    return signed_number(node.value, texts.number(std::abs(node.value)));
+  if (node.symbol == Symbol::one && (q == 2 || q == 4 || q == 5 || q == 8 || q == 10)) {
+    Fragment decimal = signed_number(node.value, texts.number(std::abs(node.value)));
+    decimal.fraction = fmt::format("{}{} / {}", node.numerator < 0 ? "-" : "", texts.number(p), texts.number(q));
+    return decimal;
+  }
   const std::string_view symbol = texts.symbols[static_cast<std::size_t>(node.symbol)];
   std::string text;
   int precedence = kAtom;
@@ -196,8 +209,16 @@ Fragment infix_negation(const Fragment& operand) {
   return {std::move(text), kNegation};
 }
 
-Fragment infix_node(const Node& node, Operands operands, const Expression& e) {
+Fragment infix_node(const Node& node, Operands given, const Expression& e) {
   if (is_exact(node)) return exact(node, kInfixExact);
+  // Inside an elementary constant a function's or a power's decimals are written as fractions:
+  // exp(-1 / 2), not exp(-0.5), which SymPy would evaluate to a float.
+  std::vector<Fragment> as_fractions(given.begin(), given.end());
+  if (node.op != Op::mul && node.op != Op::div && node.op != Op::add && node.op != Op::sub &&
+      std::ranges::all_of(given, &Fragment::exact_only))
+    for (Fragment& f : as_fractions)
+      if (!f.fraction.empty()) f = Fragment(f.fraction, kProduct);
+  const Operands operands(as_fractions);
   if (node.op == Op::constant)
     return signed_number(node.value, shortest(std::abs(node.value), false));
   if (node.op == Op::pow) return infix(operands, "^", kPower);

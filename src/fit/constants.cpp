@@ -179,10 +179,12 @@ bool has_finite_constants(const Genome& g) {
 /// A fit that leaves a constant infinite (a linear solve over a degenerate column, a step that
 /// overflowed) has failed: the constants go back to where they were and every prediction is NaN.
 std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
-  const Genome before = g;
+  thread_local std::vector<double> before;  // every evaluation fits: no allocation each time
+  before.clear();
+  for (const expr::Node& n : g) before.push_back(n.value);
   std::vector<double> predicted = fitted_values(g, rows, mode, metric);
   if (has_finite_constants(g)) return predicted;
-  g = before;
+  for (std::size_t i = 0; i < g.size(); ++i) g[i].value = before[i];
   return std::vector<double>(rows.size(), std::numeric_limits<double>::quiet_NaN());
 }
 

@@ -168,7 +168,8 @@ int SizeWeights::of(std::span<const expr::Node> nodes) const {
     int size;
     bool exact;
   };
-  std::vector<Subtree> stack;
+  thread_local std::vector<Subtree> stack;  // the search sizes every formula: no allocation each time
+  stack.clear();
   for (const auto& n : nodes) {
     const auto operands = static_cast<std::size_t>(expr::arity(n.op));
     if (operands > stack.size()) throw InvalidArgument("SizeWeights::of: not a postfix formula");

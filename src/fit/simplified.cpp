@@ -26,7 +26,8 @@ bool has(const SimplifyRules& rules, Op op) {
 /// Every node allowed, or inside an elementary constant (an op over exact constants only, such as
 /// 1/√(2π)): a constant, whichever operators write it; and a division by one is a product.
 bool allowed(const Genome& g, const SimplifyRules& rules) {
-  std::vector<bool> exact_only;  // per subtree on the stack
+  thread_local std::vector<bool> exact_only;  // per subtree on the stack
+  exact_only.clear();
   for (const expr::Node& n : g) {
     const auto operands = static_cast<std::size_t>(expr::arity(n.op));
     const bool by_constant = n.op == Op::div && exact_only.back() && has(rules, Op::mul);

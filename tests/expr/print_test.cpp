@@ -27,6 +27,19 @@ TEST(ToInfix, CanonicalSpacingAndNumbers) {
   EXPECT_EQ(infix("pow(x, 2)"), "x ^ 2");
 }
 
+// Inside an elementary constant (an op over exact constants only) exact decimals print as the
+// fractions they are, so that a CAS reads exp(-1 / 2) exactly; elsewhere a half stays 0.5 (the
+// control: x ^ 0.5 and 0.5 * x).
+TEST(ToInfix, ElementaryConstantsWriteTheirDecimalsAsFractions) {
+  const Node minus_half = exact_constant(-1, 2, Symbol::one), half = exact_constant(1, 2, Symbol::one);
+  const Node three_halves = exact_constant(3, 2, Symbol::one);
+  EXPECT_EQ(to_infix(Expression({minus_half, {Op::exp}}, {})), "exp(-1 / 2)");
+  EXPECT_EQ(to_infix(Expression({three_halves, half, {Op::pow}}, {})), "(3 / 2) ^ (1 / 2)");
+  EXPECT_EQ(to_infix(Expression({minus_half, {Op::exp}, {Op::variable, 0, 0}, {Op::pow}}, {"x"})), "exp(-1 / 2) ^ x");
+  EXPECT_EQ(to_infix(Expression({{Op::variable, 0, 0}, half, {Op::pow}}, {"x"})), "x ^ 0.5");
+  EXPECT_EQ(to_infix(Expression({half, {Op::variable, 0, 0}, {Op::mul}}, {"x"})), "0.5 * x");
+}
+
 TEST(ToInfix, MinimalParentheses) {
   EXPECT_EQ(infix("(x * y) + z"), "x * y + z");
   EXPECT_EQ(infix("(x + y) * z"), "(x + y) * z");

@@ -40,15 +40,15 @@ struct Known {
 // The constants: each found from its double (and from one carrying a fitted constant's
 // error, 1e-11 relative), printed as its closed form and equal to it to rounding.
 const Known kKnown[] = {
-    {std::exp(-0.5), "exp(-0.5)"},
+    {std::exp(-0.5), "exp(-1 / 2)"},
     {1 / std::sqrt(2 * pi), "1 / sqrt(2 * pi)"},
-    {std::sqrt(1.5), "sqrt(1.5)"},
+    {std::sqrt(1.5), "sqrt(3 / 2)"},
     {std::log(3.0), "log(3)"},
     {pi * pi, "pi ^ 2"},
     {std::exp(-1.0), "exp(-1)"},
-    {-std::sqrt(1.5), "-sqrt(1.5)"},
-    {std::exp(-0.5) / std::sqrt(2 * pi), "exp(-0.5) / sqrt(2 * pi)"},
-    {std::log(1.5) / 2, "0.5 * log(1.5)"},
+    {-std::sqrt(1.5), "-sqrt(3 / 2)"},
+    {std::exp(-0.5) / std::sqrt(2 * pi), "exp(-1 / 2) / sqrt(2 * pi)"},
+    {std::log(1.5) / 2, "0.5 * log(3 / 2)"},
 };
 
 TEST(ElementaryConstants, RecogniseTheClosedForms) {

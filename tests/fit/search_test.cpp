@@ -500,7 +500,7 @@ std::pair<std::string, int> chosen_for_the_normal_density(bool snap) {
 
 TEST(Search, ElementaryConstantsPrintInClosedForm) {
   const auto [snapped, size] = chosen_for_the_normal_density(true);
-  EXPECT_EQ(snapped, "exp(-0.5) ^ x ^ 2 / sqrt(2 * pi)");
+  EXPECT_EQ(snapped, "exp(-1 / 2) ^ x ^ 2 / sqrt(2 * pi)");
   EXPECT_EQ(size, 7);
   const auto [fitted, fitted_size] = chosen_for_the_normal_density(false);
   EXPECT_EQ(fitted.find("pi"), std::string::npos) << fitted;
