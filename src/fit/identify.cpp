@@ -17,11 +17,11 @@ using expr::Symbol;
 
 using Matrix = std::vector<std::vector<double>>;
 
-/// PSLQ's state: y = x·B (normalised), A = B⁻¹, H lower trapezoidal (n × n−1).
+/// PSLQ's state: y = x·B (normalised), H lower trapezoidal (n × n−1); a zero of y is a column of B.
 struct Pslq {
   int n;
   std::vector<double> y;
-  Matrix H, A, B;
+  Matrix H, B;
 
   explicit Pslq(std::span<const double> x) : n(static_cast<int>(x.size())), y(x.begin(), x.end()) {
     double norm = 0;
@@ -36,7 +36,7 @@ struct Pslq {
       H[at(j)][at(j)] = s[at(j + 1)] / s[at(j)];
       for (int i = j + 1; i < n; ++i) H[at(i)][at(j)] = -y[at(i)] * y[at(j)] / (s[at(j)] * s[at(j + 1)]);
     }
-    A = B = identity();
+    B = identity();
     for (int i = 1; i < n; ++i)
       for (int j = i - 1; j >= 0; --j) reduce(i, j);
   }
@@ -54,10 +54,7 @@ struct Pslq {
     if (t == 0) return;
     y[at(j)] += t * y[at(i)];
     for (int k = 0; k <= j; ++k) H[at(i)][at(k)] -= t * H[at(j)][at(k)];
-    for (int k = 0; k < n; ++k) {
-      A[at(i)][at(k)] -= t * A[at(j)][at(k)];
-      B[at(k)][at(j)] += t * B[at(k)][at(i)];
-    }
+    for (int k = 0; k < n; ++k) B[at(k)][at(j)] += t * B[at(k)][at(i)];
   }
 
   /// One iteration: swap the rows where γ^i·|H_ii| is largest, restore the corner, reduce.
@@ -71,7 +68,6 @@ struct Pslq {
     }
     std::swap(y[at(m)], y[at(m + 1)]);
     std::swap(H[at(m)], H[at(m + 1)]);
-    std::swap(A[at(m)], A[at(m + 1)]);
     for (auto& row : B) std::swap(row[at(m)], row[at(m + 1)]);
     if (m < n - 2) {
       const double t0 = std::hypot(H[at(m)][at(m)], H[at(m)][at(m + 1)]);
