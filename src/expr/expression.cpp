@@ -86,6 +86,20 @@ Node exact_constant(int numerator, int denominator, Symbol symbol) {
               static_cast<std::int16_t>(numerator), static_cast<std::uint8_t>(denominator), symbol};
 }
 
+std::vector<bool> exact_only_subtrees(std::span<const Node> nodes) {
+  std::vector<bool> out(nodes.size());
+  std::vector<std::size_t> roots;  // the subtrees on the stack
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto operands = std::min(static_cast<std::size_t>(arity(nodes[i].op)), roots.size());
+    bool exact = operands > 0 || is_exact(nodes[i]);
+    for (std::size_t k = roots.size() - operands; k < roots.size(); ++k) exact = exact && out[roots[k]];
+    roots.resize(roots.size() - operands);
+    roots.push_back(i);
+    out[i] = exact;
+  }
+  return out;
+}
+
 int arity(Op op) {
   switch (op) {
     case Op::constant:

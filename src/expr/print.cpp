@@ -32,11 +32,12 @@ using Combine = Fragment (*)(const Node& node, Operands operands, const Expressi
 
 std::string render(const Expression& e, Combine combine) {
   std::vector<Fragment> stack;
-  for (const Node& node : e.nodes()) {
+  const std::vector<bool> exact_only = exact_only_subtrees(e.nodes());
+  for (std::size_t i = 0; i < e.nodes().size(); ++i) {
+    const Node& node = e.nodes()[i];
     const auto operands = static_cast<std::size_t>(arity(node.op));
-    const Operands these = Operands(stack).last(operands);
-    Fragment combined = combine(node, these, e);
-    combined.exact_only = is_exact(node) || (operands > 0 && std::ranges::all_of(these, &Fragment::exact_only));
+    Fragment combined = combine(node, Operands(stack).last(operands), e);
+    combined.exact_only = exact_only[i];
     stack.resize(stack.size() - operands);
     stack.push_back(std::move(combined));
   }

@@ -164,26 +164,17 @@ SizeWeights::SizeWeights() { weight_.fill(1); }
 /// An elementary constant (an op over exact constants only: exp(−1/2), (2π)^(−1/2)) is a constant:
 /// it counts as one leaf, as a snapped 3π/4 does.
 int SizeWeights::of(std::span<const expr::Node> nodes) const {
-  struct Subtree {
-    int size;
-    bool exact;
-  };
-  thread_local std::vector<Subtree> stack;  // the search sizes every formula: no allocation each time
-  stack.clear();
-  for (const auto& n : nodes) {
-    const auto operands = static_cast<std::size_t>(expr::arity(n.op));
-    if (operands > stack.size()) throw InvalidArgument("SizeWeights::of: not a postfix formula");
-    int size = of(n.op);
-    bool exact = operands > 0 || expr::is_exact(n);
-    for (std::size_t k = stack.size() - operands; k < stack.size(); ++k) {
-      size += stack[k].size;
-      exact = exact && stack[k].exact;
-    }
-    stack.resize(stack.size() - operands);
-    stack.push_back({exact ? of(Op::constant) : size, exact});
-  }
+  const std::vector<bool> exact = expr::exact_only_subtrees(nodes);
+  const std::vector<std::size_t> starts = subtree_starts(nodes);
   int size = 0;
-  for (const Subtree& t : stack) size += t.size;
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    if (exact[i] && expr::arity(nodes[i].op) > 0) {  // the whole elementary constant: one leaf
+      size += of(Op::constant);
+      i = starts[i];
+      continue;
+    }
+    size += of(nodes[i].op);
+  }
   return size;
 }
 
@@ -281,15 +272,18 @@ double decimal_step(double v) {
 }
 
 double noise_floor(std::span<const double> target, Metric metric, double best_loss) {
+  if (metric == Metric::mean_relative || metric == Metric::max_rel || metric == Metric::r2) return 1e-10;
   double mean_square = 0;
+  for (double y : target) mean_square += y * y / static_cast<double>(target.size());
+  const double floor = 1e-10 * std::sqrt(mean_square);
+  if (metric != Metric::rms) return floor;
+  // Up to kDecimalSamples rows, evenly spread, tell the decimals (each reading costs 17 formats).
+  constexpr std::size_t kDecimalSamples = 1000;
   std::vector<double> steps;
-  for (double y : target) {
-    mean_square += y * y / static_cast<double>(target.size());
-    if (y != 0) steps.push_back(decimal_step(y));
-  }
-  const bool relative = metric == Metric::mean_relative || metric == Metric::max_rel || metric == Metric::r2;
-  const double floor = relative ? 1e-10 : 1e-10 * std::sqrt(mean_square);
-  if (metric != Metric::rms || steps.empty()) return floor;
+  const std::size_t stride = std::max<std::size_t>(1, target.size() / kDecimalSamples);
+  for (std::size_t r = 0; r < target.size(); r += stride)
+    if (target[r] != 0) steps.push_back(decimal_step(target[r]));
+  if (steps.empty()) return floor;
   // RMS only: the rounding of the decimals (uniform, step/√12), where the best formula does not fit
   // below it. The median step: 12.300 reads as 12.3, one value in ten, and its step is no guide.
   std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());

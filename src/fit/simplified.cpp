@@ -26,16 +26,11 @@ bool has(const SimplifyRules& rules, Op op) {
 /// Every node allowed, or inside an elementary constant (an op over exact constants only, such as
 /// 1/√(2π)): a constant, whichever operators write it; and a division by one is a product.
 bool allowed(const Genome& g, const SimplifyRules& rules) {
-  thread_local std::vector<bool> exact_only;  // per subtree on the stack
-  exact_only.clear();
-  for (const expr::Node& n : g) {
-    const auto operands = static_cast<std::size_t>(expr::arity(n.op));
-    const bool by_constant = n.op == Op::div && exact_only.back() && has(rules, Op::mul);
-    bool exact = operands > 0 || expr::is_exact(n);
-    for (std::size_t k = exact_only.size() - operands; k < exact_only.size(); ++k) exact = exact && exact_only[k];
-    exact_only.resize(exact_only.size() - operands);
-    exact_only.push_back(exact);
-    if (!(operands > 0 && exact) && !by_constant && !allowed(n, rules)) return false;
+  const std::vector<bool> exact = expr::exact_only_subtrees(g);
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (exact[i] && expr::arity(g[i].op) > 0) continue;
+    const bool by_constant = g[i].op == Op::div && exact[i - 1] && has(rules, Op::mul);  // i − 1: the divisor's root
+    if (!by_constant && !allowed(g[i], rules)) return false;
   }
   return true;
 }

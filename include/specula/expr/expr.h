@@ -58,6 +58,10 @@ Node exact_constant(int numerator, int denominator, Symbol symbol);
 /// True for an exact constant.
 inline bool is_exact(const Node& node) { return node.op == Op::constant && node.denominator > 0; }
 
+/// Per node of a postfix array: whether the subtree it roots is built of exact constants only — an
+/// exact constant, or an op over such (an elementary constant: exp(−1/2), 1/√(2π)).
+std::vector<bool> exact_only_subtrees(std::span<const Node> nodes);
+
 /// Operands an op takes: 0 for leaves, 1 or 2 otherwise.
 int arity(Op op);
 
