@@ -336,12 +336,44 @@ std::size_t written_size(const Tree& t) {
   return out.size();
 }
 
+bool same_tree(const Tree& a, const Tree& b) {
+  if (a.op != b.op || a.var != b.var || a.kids.size() != b.kids.size()) return false;
+  if (a.op == Op::constant && std::bit_cast<std::uint64_t>(a.value) != std::bit_cast<std::uint64_t>(b.value))
+    return false;
+  for (std::size_t k = 0; k < a.kids.size(); ++k)
+    if (!same_tree(a.kids[k], b.kids[k])) return false;
+  return true;
+}
+
+/// The base of a factor as product() merges it: b for b^c (c a constant), else the factor.
+const Tree& base_of(const Tree& factor) {
+  return factor.op == Op::pow && is_constant(factor.kids[1]) ? factor.kids[0] : factor;
+}
+
+/// Whether a term of `sum_of_terms` has a factor that merges with one of `others` (two
+/// constants, two exponentials, the same base): without one, multiplying out shrinks nothing.
+bool merges_with_a_term(const Tree& sum_of_terms, std::span<const Tree> others) {
+  const auto merges = [&](const Tree& factor) {
+    return std::ranges::any_of(others, [&](const Tree& other) {
+      return (factor.op == other.op && (factor.op == Op::constant || factor.op == Op::exp)) ||
+             same_tree(base_of(factor), base_of(other));
+    });
+  };
+  return std::ranges::any_of(sum_of_terms.kids, [&](const Tree& term) {
+    return term.op == Op::mul ? std::ranges::any_of(term.kids, merges) : merges(term);
+  });
+}
+
 /// The product `t` of one sum and other factors, multiplied out where that is strictly smaller:
 /// (x² − x)·x² = x⁴ − x³ (7 nodes, not 9), while 2·(x + y) and x·(x + 1) stay.
 std::optional<Tree> distributed(const Tree& t) {
   const auto is_sum = [](const Tree& f) { return f.op == Op::add; };
   if (std::count_if(t.kids.begin(), t.kids.end(), is_sum) != 1) return std::nullopt;
   const auto sum_at = std::find_if(t.kids.begin(), t.kids.end(), is_sum);
+  std::vector<Tree> others;
+  for (auto f = t.kids.begin(); f != t.kids.end(); ++f)
+    if (f != sum_at) others.push_back(*f);
+  if (!merges_with_a_term(*sum_at, others)) return std::nullopt;
   std::vector<Tree> terms;
   for (const Tree& term : sum_at->kids) {
     std::vector<Tree> factors{term};

@@ -170,6 +170,29 @@ std::vector<double> fitted_values(Genome& g, const Rows& rows, Constants mode, M
   return p.value();
 }
 
+/// Whether the subtree [first, last] of g is negative on some row (at its current constants).
+bool negative_somewhere(const Genome& g, std::size_t first, std::size_t last, const Rows& rows) {
+  thread_local std::vector<double> value, gradient;
+  evaluate_with_gradient(std::span<const expr::Node>(g.data() + first, last - first + 1), rows, value, gradient);
+  return std::ranges::any_of(value, [](double v) { return v < 0; });
+}
+
+/// A real power of a negative number needs an integer exponent: a free constant exponent whose
+/// base is negative on some row (x^c, c free, x < 0) is undefined there for every c but the
+/// integers, and its derivative (the base's log) everywhere there, so no fit could start. It
+/// becomes the nearest integer, held fixed (a mutation frees it again: the search steps it).
+void hold_integer_exponents(Genome& g, const Rows& rows) {
+  constexpr double kLargest = 1000;
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 1; i < g.size(); ++i) {
+    if (g[i].op != expr::Op::pow || !is_free_constant(g[i - 1])) continue;
+    if (starts.empty()) starts = subtree_starts(g);
+    if (!negative_somewhere(g, starts[i - 2], i - 2, rows)) continue;
+    const double exponent = std::clamp(std::round(g[i - 1].value), -kLargest, kLargest);
+    if (std::isfinite(exponent)) g[i - 1] = expr::exact_constant(static_cast<int>(exponent), 1, expr::Symbol::one);
+  }
+}
+
 bool has_finite_constants(const Genome& g) {
   return std::ranges::all_of(g, [](const expr::Node& n) { return n.op != expr::Op::constant || std::isfinite(n.value); });
 }
@@ -179,6 +202,7 @@ bool has_finite_constants(const Genome& g) {
 /// A fit that leaves a constant infinite (a linear solve over a degenerate column, a step that
 /// overflowed) has failed: the constants go back to where they were and every prediction is NaN.
 std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
+  hold_integer_exponents(g, rows);
   thread_local std::vector<double> before;  // every evaluation fits: no allocation each time
   before.clear();
   for (const expr::Node& n : g) before.push_back(n.value);

@@ -162,6 +162,26 @@ TEST(FitConstants, HoldsExactConstantsFixed) {
   EXPECT_NEAR(free[2].value, 2.5, 1e-9);
 }
 
+// x^c with x < 0 on some rows is real only for an integer c: a free exponent there becomes the
+// nearest integer, held, and the rest is fitted (before, every such formula was undefined: NaN).
+TEST(FitConstants, AnExponentOfANegativeBaseIsHeldAtTheNearestInteger) {
+  Columns c = grid(30);
+  for (double& x : c.x) x -= 1.3;  // [-0.8, 0.7]
+  for (std::size_t r = 0; r < c.x.size(); ++r) c.target[r] = 0.5 * std::pow(c.x[r], 3);
+  Genome g = genome_of("1 * x ^ 2.8");
+  const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_TRUE(expr::is_exact(g[2]));
+  EXPECT_EQ(g[2].value, 3);
+  EXPECT_NEAR(g[0].value, 0.5, 1e-12);
+  for (std::size_t r = 0; r < predicted.size(); ++r) EXPECT_NEAR(predicted[r], c.target[r], 1e-14);
+  Columns positive = grid(30);  // control: a base positive on every row keeps a free exponent
+  for (std::size_t r = 0; r < positive.x.size(); ++r) positive.target[r] = std::pow(positive.x[r], 2.5);
+  Genome free = genome_of("1 * x ^ 2.8");
+  fit_constants(free, positive.rows(), Constants::fitted);
+  EXPECT_FALSE(expr::is_exact(free[2]));
+  EXPECT_NEAR(free[2].value, 2.5, 1e-9);
+}
+
 TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
   const Columns c = sampled("x", 10);
   Genome g = genome_of("log(x - 1.5)");
