@@ -189,6 +189,13 @@ Tree exponent_constant(double value, bool exact) {
 
 bool is_exact_constant(const Tree& t) { return is_constant(t) && is_exact(leaf_node(t)); }
 
+/// The exact constant e (a snapped base: e^x).
+bool is_euler_number(const Tree& t) {
+  if (!is_exact_constant(t)) return false;
+  const Node n = leaf_node(t);
+  return n.symbol == Symbol::e && n.numerator == 1 && n.denominator == 1;
+}
+
 /// The exact constant equal to `value` (p/q or p·s/q, q ≤ 12), if there is one.
 std::optional<Node> exact_equal_to(double value) {
   for (std::size_t s = 0; s < kSymbolCount; ++s) {
@@ -593,9 +600,13 @@ Tree canonical(Tree t) {
     case Op::pow:
       if (is_constant(t.kids[1])) return power(std::move(t.kids[0]), t.kids[1].value, is_exact_constant(t.kids[1]));
       if (is_constant(t.kids[0], 1)) return std::move(t.kids[0]);  // 1^u = 1
-      // (e^a)^u = e^(a·u), but a constant's power stays one: exp(-0.5) ^ x ^ 2 is a node smaller.
-      if (t.kids[0].op == Op::exp && !is_elementary_constant(t.kids[0]))
-        return exponential(product({std::move(t.kids[0].kids[0]), std::move(t.kids[1])}));
+      if (is_euler_number(t.kids[0])) return exponential(std::move(t.kids[1]));  // e^u: exp(u)
+      // (e^a)^u = e^(a·u), but a constant's power stays one unless the merged form is smaller:
+      // exp(-0.5) ^ x ^ 2 is a node smaller than exp(-0.5 * x ^ 2), exp(2) ^ (x / 2) two larger than exp(x).
+      if (t.kids[0].op == Op::exp) {
+        Tree merged = exponential(product({t.kids[0].kids[0], t.kids[1]}));
+        if (!is_elementary_constant(t.kids[0]) || written_size(merged) < written_size(t)) return merged;
+      }
       return t;
     case Op::abs:
       if (positive(t.kids[0])) return std::move(t.kids[0]);

@@ -3,8 +3,14 @@
 #include "identify.h"
 #include "simplified.h"
 
+#include <Eigen/SVD>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
+#include <span>
 #include <string>
 
 namespace specula::fit {
@@ -80,6 +86,103 @@ Snapped evaluated(const Genome& g, const Rows& rows, const SnapSettings& setting
   return {g, loss};
 }
 
+namespace {
+
+/// How far the free constants of `g` are from simple: how many no simple number matches to 10⁻⁹
+/// (relative), then how many no integer does — the digits and fractions a reader must take in.
+std::pair<int, int> unsimple_constants(const Genome& g) {
+  const auto matches = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+  int unmatched = 0, fractions = 0;
+  for (const Node& n : g) {
+    if (!is_free_constant(n)) continue;
+    const auto near = snap_candidates(n.value);
+    unmatched += std::ranges::none_of(near, [&](const Node& c) { return matches(c.value, n.value); });
+    fractions += !matches(std::round(n.value), n.value);
+  }
+  return {unmatched, fractions};
+}
+
+/// The relative rates d(ln c_j)/dt of a path along which g's free constants move together and no
+/// value on the rows changes (a·x/(b·x − c) keeps its values for (k·a, k·b, k·c): rates 1, 1, 1): the
+/// null vector of the Jacobian by the constants' logs, over the constants that matter (a column
+/// above 10⁻⁸ of the largest; a negligible or zero constant has rate 0: it is no scale, snapping
+/// to 0 is its business). Nothing where every direction changes the values (the smallest singular
+/// value above 10⁻⁸ of the largest) or the path moves fewer than two constants.
+std::optional<std::vector<double>> free_scale_rates(const Genome& g, const Rows& rows) {
+  std::vector<double> value, gradient, constants;
+  evaluate_with_gradient(g, rows, value, gradient);
+  for (const Node& n : g)
+    if (is_free_constant(n)) constants.push_back(n.value);
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  if (constants.size() < 2 || n == 0) return std::nullopt;
+  Eigen::MatrixXd J(n, static_cast<Eigen::Index>(constants.size()));
+  for (std::size_t j = 0; j < constants.size(); ++j)
+    for (Eigen::Index r = 0; r < n; ++r)
+      J(r, static_cast<Eigen::Index>(j)) = gradient[j * rows.size() + static_cast<std::size_t>(r)] * constants[j];
+  if (!J.allFinite()) return std::nullopt;
+  const Eigen::VectorXd norms = J.colwise().norm();
+  std::vector<Eigen::Index> matter;
+  for (Eigen::Index j = 0; j < norms.size(); ++j)
+    if (norms(j) > 1e-8 * norms.maxCoeff()) matter.push_back(j);
+  if (matter.size() < 2) return std::nullopt;
+  Eigen::MatrixXd M(n, static_cast<Eigen::Index>(matter.size()));
+  for (std::size_t k = 0; k < matter.size(); ++k) M.col(static_cast<Eigen::Index>(k)) = J.col(matter[k]);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeThinV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const Eigen::Index last = sigma.size() - 1;
+  if (sigma(last) > 1e-8 * sigma(0)) return std::nullopt;
+  std::vector<double> rates(constants.size(), 0.0);
+  for (std::size_t k = 0; k < matter.size(); ++k)
+    rates[static_cast<std::size_t>(matter[k])] = svd.matrixV()(static_cast<Eigen::Index>(k), last);
+  const double largest = std::ranges::max(rates, {}, [](double r) { return std::abs(r); });
+  if (std::ranges::count_if(rates, [&](double r) { return std::abs(r) >= 0.1 * std::abs(largest); }) < 2)
+    return std::nullopt;
+  return rates;
+}
+
+/// `g` moved along the free path (rates, above) until its free constant number `held` is ±1, that
+/// one then exact: c_j·|c_held|^(−rate_j / rate_held).
+Genome moved_to_unit(const Genome& g, std::size_t held, std::span<const double> rates) {
+  Genome out = g;
+  std::size_t k = 0, held_node = 0;
+  double held_value = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (is_free_constant(out[i]) && k++ == held) held_node = i, held_value = out[i].value;
+  k = 0;
+  for (Node& n : out)
+    if (is_free_constant(n)) n.value *= std::pow(std::abs(held_value), -rates[k++] / rates[held]);
+  out[held_node] = expr::exact_constant(held_value < 0 ? -1 : 1, 1, Symbol::one);
+  return out;
+}
+
+/// `current` with a constant the others make up for held at ±1: a fit leaves a free scale wherever
+/// it drifted (−1.3e11·z/(4.3e10/x − 4.3e9) for −30·z/(10/x − 1)). Each constant on the free path
+/// is tried, moved there along it and the others refitted; of those within the loss allowed, the
+/// one that leaves the most others at simple numbers, then at integers. Nothing when there is no
+/// free path.
+std::optional<Snapped> without_free_scale(const Snapped& current, const Rows& rows, const SnapSettings& settings,
+                                          double allowed, int& refits_left) {
+  const auto rates = free_scale_rates(current.genome, rows);
+  if (!rates) return std::nullopt;
+  const double largest = std::ranges::max(*rates, {}, [](double r) { return std::abs(r); });
+  std::optional<Snapped> best;
+  std::pair<int, int> best_unsimple;
+  for (std::size_t held = 0; held < rates->size(); ++held) {
+    if (std::abs((*rates)[held]) < 0.1 * std::abs(largest)) continue;
+    if (--refits_left < 0 || settings.stop()) break;
+    Snapped tried = refitted(moved_to_unit(current.genome, held, *rates), rows, settings);
+    if (tried.loss > allowed || !settings.acceptable(tried.genome)) continue;
+    const auto unsimple = unsimple_constants(tried.genome);
+    if (!best || unsimple < best_unsimple) {
+      best = std::move(tried);
+      best_unsimple = unsimple;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 Snapped snapped(const Genome& g, const Rows& rows, const SnapSettings& settings) {
   Snapped current = evaluated(g, rows, settings);
   if (settings.constants == Constants::none) return current;
@@ -88,6 +191,7 @@ Snapped snapped(const Genome& g, const Rows& rows, const SnapSettings& settings)
   // rough one, 3·ln 2/2 for a constant near 1.04 claims a structure the data do not show.
   const bool fits_exactly = current.loss <= settings.floor;
   int refits_left = settings.max_refits;
+  if (auto held = without_free_scale(current, rows, settings, allowed, refits_left)) current = std::move(*held);
   for (std::size_t i = 0; i < current.genome.size() && refits_left > 0; ++i) {
     if (current.genome[i].op != Op::constant || expr::is_exact(current.genome[i])) continue;
     for (const Genome& candidate : candidates(current.genome[i].value, settings.constants, fits_exactly)) {

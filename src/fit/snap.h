@@ -5,6 +5,8 @@
 // simplest first; a snapped constant is kept (exact, expr::exact_constant, and held fixed from then
 // on) when, with the formula's other constants refitted, its error stays within the tolerance.
 // Multiples of the symbols are tried only in a formula that fits to rounding or the target error.
+// First, a constant the others make up for (a scale the fit leaves free: a·x/(b·x − c)) is held
+// at ±1, the one of them that leaves the most others at simple numbers.
 #include <functional>
 #include <vector>
 

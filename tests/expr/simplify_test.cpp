@@ -141,6 +141,20 @@ TEST(Simplify, LogsOfExponentialsAndPowersOfExponentialsNeedNoSign) {
   EXPECT_EQ(simplified("sqrt(x ^ 2)"), "sqrt(x ^ 2)");
 }
 
+// A constant's power of an exponential merges only where that is smaller (a fit's Livermore-7
+// printed 0.5 * (exp(1) ^ x - exp(-x)), size 9 for the truth's 8); a snapped e to a power is exp.
+// The constants are exact, as snapping leaves them (a parsed one is free and always merges).
+TEST(Simplify, AnExponentialConstantsPowerMergesWhereThatIsSmaller) {
+  const Node x{Op::variable, 0, 0}, exp{Op::exp, 0, 0}, pow{Op::pow, 0, 0};
+  const auto exact = [](int p, int q) { return exact_constant(p, q, Symbol::one); };
+  const auto text = [](std::vector<Node> nodes) { return to_infix(simplify(Expression(std::move(nodes), {"x"}))); };
+  EXPECT_EQ(text({exact(1, 1), exp, x, pow}), "exp(x)");
+  EXPECT_EQ(text({exact(2, 1), exp, x, exact(2, 1), Node{Op::div, 0, 0}, pow}), "exp(x)");
+  EXPECT_EQ(text({exact_constant(1, 1, Symbol::e), x, pow}), "exp(x)");
+  // Control: the merged form is no smaller, the constant's power stays (the fit counts exp(-1/2) one node).
+  EXPECT_EQ(text({exact(-1, 2), exp, x, exact(2, 1), pow, pow}), "exp(-1 / 2) ^ x ^ 2");
+}
+
 /// `text` simplified where x and y are known positive.
 std::string simplified_positive(const std::string& text) {
   return to_infix(simplify(parse(text, {"x", "y"}), std::vector<bool>{true, true}));

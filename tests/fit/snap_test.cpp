@@ -109,6 +109,22 @@ TEST(Snapped, AConstantTheDataDoesNotMakeSimpleStays) {
   EXPECT_EQ(snapped_text(s.genome), "1.05 * x");
 }
 
+// a·x/(b·x − c) keeps its values for (k·a, k·b, k·c): a fit leaves the scale where it drifted
+// (issue 42: Keijzer-5 came out as −1.2872e+11·z/y²/(4.29067e+10/x − 4.29067e+09), the truth
+// 30·x·z/((x − 10)·y²) to the digits but judged not recovered). Holding c at 1 leaves −3 and 10.
+TEST(Snapped, AScaleTheOtherConstantsMakeUpForIsHeldAtOne) {
+  const Data1 d(0.5, 4, 30, [](double x) { return 3 * x / (x - 10); });
+  const Genome drifted = snap_genome("-1.2872e11 * x / (4.29067e10 - 4.29067e9 * x)");
+  Genome g = drifted;
+  fit_constants(g, d.rows, Constants::fitted);
+  EXPECT_EQ(snapped_text(snapped(g, d.rows, rounding()).genome), "-3 * x / (10 - x)");
+  // Control: without a free scale no constant is held at 1 (3.3 and 10.7 are no simple numbers).
+  const Data1 e(0.5, 4, 30, [](double x) { return 3.3 * x / (x - 10.7); });
+  Genome fixed = snap_genome("2.9 * x / (x - 9.8)");
+  fit_constants(fixed, e.rows, Constants::fitted);
+  EXPECT_EQ(snapped_text(snapped(fixed, e.rows, rounding()).genome), "3.3 * x / (x - 10.7)");
+}
+
 TEST(Snapped, TheToleranceDecides) {
   // y = 0.999 x: 1 costs 0.1 % of y, far more than 1 % of the (zero) error; a floor above that
   // error lets it through.
