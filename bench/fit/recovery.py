@@ -236,13 +236,19 @@ def node_count(text):
 
 # ---- data and the fit -----------------------------------------------------------------------------
 
+def intervals_of(spec, variables):
+    """A U spec's interval per variable (one interval: every variable's)."""
+    intervals = spec[2]
+    return intervals * len(variables) if len(intervals) == 1 else intervals
+
+
 def points(name, spec, variables, seed):
     """The training points of the spec (see the docstring): a list of tuples, one value per variable."""
     if spec[0] == "E":
         _, start, stop, step = spec
         return [(float(v),) for v in numpy.linspace(start, stop, int((stop - start) / step) + 1)]
-    _, n, intervals = spec
-    intervals = intervals * len(variables) if len(intervals) == 1 else intervals
+    n = spec[1]
+    intervals = intervals_of(spec, variables)
     rng = random.Random(1000 * seed + SEED_OFFSET[suite_of(name)] + int(name.split("-")[1]))
     return [tuple(rng.uniform(*interval) for interval in intervals) for _ in range(n)]
 
@@ -312,8 +318,7 @@ def positive_domain(spec, variables):
     """Whether every variable of the training set is ≥ 0 on every row (the truth's domain there)."""
     if spec[0] == "E":
         return spec[1] >= 0
-    intervals = spec[2] * len(variables) if len(spec[2]) == 1 else spec[2]
-    return all(low >= 0 for low, _ in intervals)
+    return all(low >= 0 for low, _ in intervals_of(spec, variables))
 
 
 def recovered(formula, truth, variables, positive=False):

@@ -357,13 +357,15 @@ const Tree& base_of(const Tree& factor) {
   return factor.op == Op::pow && is_constant(factor.kids[1]) ? factor.kids[0] : factor;
 }
 
-/// Whether a term of `sum_of_terms` has a factor that merges with one of `others` (two
-/// constants, two exponentials, the same base): without one, multiplying out shrinks nothing.
-bool merges_with_a_term(const Tree& sum_of_terms, std::span<const Tree> others) {
+/// Whether a term of the product's sum (its factor `sum_of_terms`) has a factor that merges with
+/// one of the product's other factors (two constants, two exponentials, the same base): without
+/// one, multiplying out shrinks nothing.
+bool merges_with_a_term(const Tree& product_of_factors, const Tree& sum_of_terms) {
   const auto merges = [&](const Tree& factor) {
-    return std::ranges::any_of(others, [&](const Tree& other) {
-      return (factor.op == other.op && (factor.op == Op::constant || factor.op == Op::exp)) ||
-             same_tree(base_of(factor), base_of(other));
+    return std::ranges::any_of(product_of_factors.kids, [&](const Tree& other) {
+      return &other != &sum_of_terms &&
+             ((factor.op == other.op && (factor.op == Op::constant || factor.op == Op::exp)) ||
+              same_tree(base_of(factor), base_of(other)));
     });
   };
   return std::ranges::any_of(sum_of_terms.kids, [&](const Tree& term) {
@@ -377,10 +379,7 @@ std::optional<Tree> distributed(const Tree& t) {
   const auto is_sum = [](const Tree& f) { return f.op == Op::add; };
   if (std::count_if(t.kids.begin(), t.kids.end(), is_sum) != 1) return std::nullopt;
   const auto sum_at = std::find_if(t.kids.begin(), t.kids.end(), is_sum);
-  std::vector<Tree> others;
-  for (auto f = t.kids.begin(); f != t.kids.end(); ++f)
-    if (f != sum_at) others.push_back(*f);
-  if (!merges_with_a_term(*sum_at, others)) return std::nullopt;
+  if (!merges_with_a_term(t, *sum_at)) return std::nullopt;
   std::vector<Tree> terms;
   for (const Tree& term : sum_at->kids) {
     std::vector<Tree> factors{term};
@@ -603,9 +602,11 @@ Tree canonical(Tree t) {
       if (is_euler_number(t.kids[0])) return exponential(std::move(t.kids[1]));  // e^u: exp(u)
       // (e^a)^u = e^(a·u), but a constant's power stays one unless the merged form is smaller:
       // exp(-0.5) ^ x ^ 2 is a node smaller than exp(-0.5 * x ^ 2), exp(2) ^ (x / 2) two larger than exp(x).
+      if (t.kids[0].op == Op::exp && !is_elementary_constant(t.kids[0]))
+        return exponential(product({std::move(t.kids[0].kids[0]), std::move(t.kids[1])}));
       if (t.kids[0].op == Op::exp) {
         Tree merged = exponential(product({t.kids[0].kids[0], t.kids[1]}));
-        if (!is_elementary_constant(t.kids[0]) || written_size(merged) < written_size(t)) return merged;
+        if (written_size(merged) < written_size(t)) return merged;
       }
       return t;
     case Op::abs:

@@ -9,9 +9,10 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <utility>
+#include <ranges>
 #include <span>
 #include <string>
+#include <utility>
 
 namespace specula::fit {
 namespace {
@@ -102,6 +103,13 @@ std::pair<int, int> unsimple_constants(const Genome& g) {
   return {unmatched, fractions};
 }
 
+/// Whether constant j moves on the free path of `rates` (free_scale_rates): at least 0.1 of the
+/// fastest one's rate.
+bool on_free_path(std::span<const double> rates, std::size_t j) {
+  const double largest = std::abs(std::ranges::max(rates, {}, [](double r) { return std::abs(r); }));
+  return std::abs(rates[j]) >= 0.1 * largest;
+}
+
 /// The relative rates d(ln c_j)/dt of a path along which g's free constants move together and no
 /// value on the rows changes (a·x/(b·x − c) keeps its values for (k·a, k·b, k·c): rates 1, 1, 1): the
 /// null vector of the Jacobian by the constants' logs, over the constants that matter (a column
@@ -134,8 +142,7 @@ std::optional<std::vector<double>> free_scale_rates(const Genome& g, const Rows&
   std::vector<double> rates(constants.size(), 0.0);
   for (std::size_t k = 0; k < matter.size(); ++k)
     rates[static_cast<std::size_t>(matter[k])] = svd.matrixV()(static_cast<Eigen::Index>(k), last);
-  const double largest = std::ranges::max(rates, {}, [](double r) { return std::abs(r); });
-  if (std::ranges::count_if(rates, [&](double r) { return std::abs(r) >= 0.1 * std::abs(largest); }) < 2)
+  if (std::ranges::count_if(std::views::iota(std::size_t{0}, rates.size()), [&](std::size_t j) { return on_free_path(rates, j); }) < 2)
     return std::nullopt;
   return rates;
 }
@@ -164,11 +171,10 @@ std::optional<Snapped> without_free_scale(const Snapped& current, const Rows& ro
                                           double allowed, int& refits_left) {
   const auto rates = free_scale_rates(current.genome, rows);
   if (!rates) return std::nullopt;
-  const double largest = std::ranges::max(*rates, {}, [](double r) { return std::abs(r); });
   std::optional<Snapped> best;
   std::pair<int, int> best_unsimple;
   for (std::size_t held = 0; held < rates->size(); ++held) {
-    if (std::abs((*rates)[held]) < 0.1 * std::abs(largest)) continue;
+    if (!on_free_path(*rates, held)) continue;
     if (--refits_left < 0 || settings.stop()) break;
     Snapped tried = refitted(moved_to_unit(current.genome, held, *rates), rows, settings);
     if (tried.loss > allowed || !settings.acceptable(tried.genome)) continue;
