@@ -180,29 +180,29 @@ bool negative_somewhere(const Genome& g, std::size_t first, std::size_t last, co
 /// A real power of a negative number needs an integer exponent: a free constant exponent whose
 /// base is negative on some row (x^c, c free, x < 0) is undefined there for every c but the
 /// integers, and its derivative (the base's log) everywhere there, so no fit could start. It
-/// becomes the nearest integer, held fixed (a mutation frees it again: the search steps it).
-void hold_integer_exponents(Genome& g, const Rows& rows) {
+/// becomes the nearest integer, held fixed (a mutation frees it again); returns where.
+std::vector<std::size_t> hold_integer_exponents(Genome& g, const Rows& rows) {
   constexpr double kLargest = 1000;
-  std::vector<std::size_t> starts;
+  std::vector<std::size_t> starts, held;
   for (std::size_t i = 1; i < g.size(); ++i) {
     if (g[i].op != expr::Op::pow || !is_free_constant(g[i - 1])) continue;
     if (starts.empty()) starts = subtree_starts(g);
     if (!negative_somewhere(g, starts[i - 2], i - 2, rows)) continue;
     const double exponent = std::clamp(std::round(g[i - 1].value), -kLargest, kLargest);
-    if (std::isfinite(exponent)) g[i - 1] = expr::exact_constant(static_cast<int>(exponent), 1, expr::Symbol::one);
+    if (!std::isfinite(exponent)) continue;
+    g[i - 1] = expr::exact_constant(static_cast<int>(exponent), 1, expr::Symbol::one);
+    held.push_back(i - 1);
   }
+  return held;
 }
 
 bool has_finite_constants(const Genome& g) {
   return std::ranges::all_of(g, [](const expr::Node& n) { return n.op != expr::Op::constant || std::isfinite(n.value); });
 }
 
-}  // namespace
-
-/// A fit that leaves a constant infinite (a linear solve over a degenerate column, a step that
-/// overflowed) has failed: the constants go back to where they were and every prediction is NaN.
-std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
-  hold_integer_exponents(g, rows);
+/// The fit from g's constants; on a fit that leaves a constant infinite (a linear solve over a
+/// degenerate column, a step that overflowed) the constants go back and every prediction is NaN.
+std::vector<double> fitted_or_nan(Genome& g, const Rows& rows, Constants mode, Metric metric) {
   thread_local std::vector<double> before;  // every evaluation fits: no allocation each time
   before.clear();
   for (const expr::Node& n : g) before.push_back(n.value);
@@ -212,6 +212,49 @@ std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, M
   return std::vector<double>(rows.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
+double error_of(std::span<const double> predicted, const Rows& rows, Metric metric) {
+  const double error = measure(metric, predicted, rows.target);
+  return std::isnan(error) ? INFINITY : error;
+}
+
+/// A held integer exponent is a discrete constant, and the fit its line search: from the nearest
+/// integer it steps by the first of +1, −1, +2, −2 that lowers the error, and on by the same step
+/// while that lowers it (x^3 to x^9 in four fits: ±2 keeps an odd or even power's symmetry, which
+/// ±1 breaks on data of both signs). Where mutations alone had to land on 9. At most kStepped
+/// exponents per formula (each try is a whole fit), at most kSteps steps each.
+std::vector<double> stepped_exponents(Genome& g, std::vector<double> predicted, std::span<const std::size_t> held,
+                                      const Rows& rows, Constants mode, Metric metric) {
+  constexpr std::size_t kStepped = 2;
+  constexpr int kSteps = 12, kLargest = 64;
+  if (held.size() > kStepped) return predicted;
+  double error = error_of(predicted, rows, metric);
+  const auto improved = [&](std::size_t at, int step) {
+    const int exponent = static_cast<int>(g[at].value) + step;
+    if (std::abs(exponent) > kLargest) return false;
+    Genome trial = g;
+    trial[at] = expr::exact_constant(exponent, 1, expr::Symbol::one);
+    std::vector<double> values = fitted_or_nan(trial, rows, mode, metric);
+    const double trial_error = error_of(values, rows, metric);
+    if (!(trial_error < error * (1 - 1e-9))) return false;  // lower by more than rounding
+    g = std::move(trial), predicted = std::move(values), error = trial_error;
+    return true;
+  };
+  for (const std::size_t at : held)
+    for (const int step : {1, -1, 2, -2}) {
+      int taken = 0;
+      while (taken < kSteps && improved(at, step)) ++taken;
+      if (taken > 0) break;
+    }
+  return predicted;
+}
+
+}  // namespace
+
+std::vector<double> fit_constants(Genome& g, const Rows& rows, Constants mode, Metric metric) {
+  const std::vector<std::size_t> held = hold_integer_exponents(g, rows);
+  std::vector<double> predicted = fitted_or_nan(g, rows, mode, metric);
+  return held.empty() ? predicted : stepped_exponents(g, std::move(predicted), held, rows, mode, metric);
+}
 FittedFormula fit_formula_constants(const expr::Expression& formula, const Data& data, Metric metric) {
   if (data.target.empty()) throw InvalidArgument("no data rows");
   if (data.columns.size() != formula.variables().size())

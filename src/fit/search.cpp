@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "constants.h"
+#include "expanded.h"
 #include "genome.h"
 #include "simplified.h"
 #include "snap.h"
@@ -34,6 +35,10 @@ struct Individual {
   double loss = INFINITY;
   int size = 0;
   bool cancels = false;  // fits by cancellation: may breed, never enters the front
+  double printed_loss = 0;  // the loss with the constants as printed (snapped front only)
+
+  // What the front ranks by: the formula as fitted, or as a reader copies it, whichever is worse.
+  double ranking() const { return std::max(loss, printed_loss); }
 };
 
 bool better(const Individual& a, const Individual& b) {
@@ -213,12 +218,12 @@ class Archive {
     if (it == best_.end() || x.loss <= it->second.loss * (1 + tolerance) + floor) best_.insert_or_assign(x.size, x);
   }
   // Each size's best that beats every smaller one by more than rounding: by 10⁻⁶ of its error
-  // and by `noise`. (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
+  // and by `noise` (as Individual::ranking() has it). (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
   // 1105270 − 0.197243·(5603590 − n) for 0.197243·n + 0.250673.)
   std::vector<const Individual*> front() const {
     std::vector<const Individual*> out;
     for (const auto& [size, x] : best_)
-      if (out.empty() || x.loss < out.back()->loss * (1 - kLowerBy) - noise_) out.push_back(&x);
+      if (out.empty() || x.ranking() < out.back()->ranking() * (1 - kLowerBy) - noise_) out.push_back(&x);
     return out;
   }
 
@@ -571,17 +576,53 @@ class Search {
     settings.max_refits = static_cast<int>(std::clamp<std::size_t>(20'000'000 / (problem_.train.size() + 1), 20, 500));
     const std::vector<const Individual*> unsnapped = archive_.front();
     Archive snapped_archive(rounding_noise(problem_));
-    for (const Individual* x : unsnapped) snapped_archive.offer(*x);
+    for (const Individual* x : unsnapped) snapped_archive.offer(as_printed(*x));
     for (const Individual* x : unsnapped) {
-      Snapped s = snapped(x->genome, problem_.train, settings);
-      std::vector<double> values(problem_.train.size());
-      expr::evaluate_batch(expr::Expression(s.genome, data_.variables), problem_.train.columns, values);
-      if (auto simple = simplified(s.genome, values, problem_.train, problem_.rules)) s.genome = std::move(*simple);
-      Individual y{s.genome, canonical_key(s.genome), s.loss, problem_.weights.of(s.genome)};
-      y.cancels = problem_.cancels(y.genome);
+      const Individual y = simplified_snap(snapped(x->genome, problem_.train, settings));
       snapped_archive.offer_within(y, settings.tolerance, settings.floor);
+      if (auto polynomial = expanded(y, x->loss, settings)) snapped_archive.offer_within(*polynomial, settings.tolerance, settings.floor);
     }
     return copied(snapped_archive.front());
+  }
+
+  // A snapped formula simplified again (an exact 0 drops its term), as the front ranks it.
+  Individual simplified_snap(Snapped s) const {
+    std::vector<double> values(problem_.train.size());
+    expr::evaluate_batch(expr::Expression(s.genome, data_.variables), problem_.train.columns, values);
+    if (auto simple = simplified(s.genome, values, problem_.train, problem_.rules)) s.genome = std::move(*simple);
+    Individual y{s.genome, canonical_key(s.genome), s.loss, problem_.weights.of(s.genome)};
+    y.cancels = problem_.cancels(y.genome);
+    return as_printed(std::move(y));
+  }
+
+  // x with its printed loss: its constants rounded to kPrintedDigits, on the training rows.
+  Individual as_printed(Individual x) const {
+    const expr::Expression printed = rounded(expr::Expression(x.genome, data_.variables), kPrintedDigits);
+    std::vector<double> values(problem_.train.size());
+    expr::evaluate_batch(printed, problem_.train.columns, values);
+    x.printed_loss = to_loss(options_.metric, measure(options_.metric, values, problem_.train_target));
+    if (std::isnan(x.printed_loss)) x.printed_loss = INFINITY;
+    return x;
+  }
+
+  // A polynomial of the front multiplied out (expanded.h), its coefficients fitted and snapped:
+  // where they are simple, its printed form is exact and the factored one's is not. Only where
+  // the operators write it, its monomials are at most half the rows (never an interpolation), and
+  // it fits as well as x did before its snap (`loss`).
+  std::optional<Individual> expanded(const Individual& x, double loss, const SnapSettings& settings) const {
+    constexpr std::size_t kMostMonomials = 16;
+    const auto writes = [this](Op op) { return std::ranges::find(problem_.rules.operators, op) != problem_.rules.operators.end(); };
+    if (!writes(Op::add) || !writes(Op::mul) || !writes(Op::pow)) return std::nullopt;
+    const std::optional<int> degree = polynomial_degree(x.genome);
+    const auto variables = static_cast<std::uint32_t>(data_.columns.size());
+    if (!degree || *degree < 2 ||
+        monomial_count(*degree, variables) > std::min(kMostMonomials, problem_.train.size() / 2))
+      return std::nullopt;
+    const Snapped fitted = refitted(dense_polynomial(*degree, variables), problem_.train, settings);
+    if (!(fitted.loss <= loss * (1 + settings.tolerance) + settings.floor)) return std::nullopt;
+    Individual y = simplified_snap(snapped(fitted.genome, problem_.train, settings));
+    if (y.size > options_.max_size) return std::nullopt;
+    return y;
   }
 
   std::vector<Individual> enumerate() {

@@ -182,6 +182,20 @@ TEST(FitConstants, AnExponentOfANegativeBaseIsHeldAtTheNearestInteger) {
   EXPECT_NEAR(free[2].value, 2.5, 1e-9);
 }
 
+// The held integer is a discrete constant the fit steps downhill: x^2.8 held at 3 goes to x^9 for
+// data of x⁹ (before, it stayed at 3 until a mutation happened to land near 9). Control: where 3
+// is the best integer the steps leave it (the test above).
+TEST(FitConstants, AHeldIntegerExponentStepsToTheBestInteger) {
+  Columns c = grid(30);
+  for (double& x : c.x) x -= 1.3;
+  for (std::size_t r = 0; r < c.x.size(); ++r) c.target[r] = 2 * std::pow(c.x[r], 9);
+  Genome g = genome_of("1 * x ^ 2.8");
+  const auto predicted = fit_constants(g, c.rows(), Constants::fitted);
+  EXPECT_EQ(g[2].value, 9);
+  EXPECT_NEAR(g[0].value, 2, 1e-12);
+  for (std::size_t r = 0; r < predicted.size(); ++r) EXPECT_NEAR(predicted[r], c.target[r], 1e-14);
+}
+
 TEST(FitConstants, UndefinedFormulasGiveNonFinitePredictions) {
   const Columns c = sampled("x", 10);
   Genome g = genome_of("log(x - 1.5)");

@@ -508,6 +508,27 @@ TEST(Search, ElementaryConstantsPrintInClosedForm) {
   EXPECT_EQ(fitted_size, 7);
 }
 
+// 4x⁴ + 3x³ + 2x² + x found factored over its real roots, 4·x·(x + 0.60583)·((x + 0.0720852)² +
+// 0.407461) (size 15, bench-fit's Livermore-6): exact as fitted, but its printed constants are not.
+// Multiplied out, its coefficients snap to integers (size 19), and the front, ranking formulas as
+// printed, keeps both and chooses the exact one. Control: without the ^ that writes the expansion
+// the factored form stays the choice.
+std::string chosen_for_a_factored_quartic(const char* operators) {
+  const Data d = sampled("4*x^4 + 3*x^3 + 2*x^2 + x", -1, 1, 21);
+  Options o = quick(0);
+  o.enumerate_max_size = 1;
+  o.operators = parse_operators(operators);
+  o.starts = {"4 * x * (x + 0.6) * ((x + 0.07) * (x + 0.07) + 0.4)"};
+  const Result r = search(d, o);
+  return expr::to_infix(r.front[r.chosen].formula);
+}
+
+TEST(Search, APolynomialFoundFactoredIsChosenExpandedWhereItsCoefficientsSnap) {
+  EXPECT_EQ(chosen_for_a_factored_quartic("+,*,^"), "x + 2 * x ^ 2 + 3 * x ^ 3 + 4 * x ^ 4");
+  const std::string control = chosen_for_a_factored_quartic("+,*");
+  EXPECT_NE(control.find("0.605829"), std::string::npos) << control;
+}
+
 // The outside check's bad formulas, given as starts, do not reach the front: cancellations (of
 // constants, of huge terms), garbage terms, integers and halves in disguise.
 const std::vector<std::string> kBadStarts = {
