@@ -64,8 +64,8 @@ Tree from_postfix(std::span<const Node> nodes) {
 /// A text that is equal for equal trees (constants by their bits): the canonical order's key.
 void append_key(const Tree& t, std::string& key) {
   key += static_cast<char>('A' + static_cast<int>(t.op));
-  if (t.op == Op::constant) key += fmt::format("{:x}", std::bit_cast<std::uint64_t>(t.value));
-  if (t.op == Op::variable) key += fmt::format("{}", t.var);
+  if (t.op == Op::constant) fmt::format_to(std::back_inserter(key), "{:x}", std::bit_cast<std::uint64_t>(t.value));
+  if (t.op == Op::variable) fmt::format_to(std::back_inserter(key), "{}", t.var);
   if (t.kids.empty()) return;
   key += '(';
   for (const Tree& kid : t.kids) {
@@ -169,6 +169,7 @@ class Combined {
 
 Tree product(std::vector<Tree> factors);
 Tree sum(std::vector<Tree> terms);
+std::optional<Tree> over_common_denominator(const Tree& sum_of_terms);
 bool reads_negative(const Tree& t);
 
 /// An exponent as a constant node: exact (a fit holds it fixed) when every exponent it came from
@@ -491,7 +492,44 @@ Tree sum(std::vector<Tree> terms) {
   sort_by_key(kept);
   if (constant_part.value() != 0 || kept.empty()) kept.push_back(constant_part.tree());
   if (kept.size() == 1) return std::move(kept.front());
-  return {Op::add, 0, 0, std::move(kept)};
+  Tree t{Op::add, 0, 0, std::move(kept)};
+  if (auto together = over_common_denominator(t)) return std::move(*together);
+  return t;
+}
+
+/// The first sum D that a term of `sum_of_terms` divides by (a factor D^−1), if any.
+const Tree* divisor_sum(const Tree& sum_of_terms) {
+  const auto reciprocal_sum = [](const Tree& f) {
+    return f.op == Op::pow && is_constant(f.kids[1], -1) && f.kids[0].op == Op::add;
+  };
+  for (const Tree& term : sum_of_terms.kids) {
+    if (reciprocal_sum(term)) return &term.kids[0];
+    if (term.op != Op::mul) continue;
+    const auto factor = std::find_if(term.kids.begin(), term.kids.end(), reciprocal_sum);
+    if (factor != term.kids.end()) return &factor->kids[0];
+  }
+  return nullptr;
+}
+
+/// Set while over_common_denominator builds its candidate: the product it makes may multiply the
+/// fraction out again (distributed), which must not try the common denominator anew.
+thread_local bool building_common_denominator = false;
+
+/// a/D + b as (a + b·D)/D where that is strictly smaller: the numerator's like terms may cancel,
+/// x/(x/2 − 5) − 2 = 10/(x/2 − 5). Defined where the sum is (D ≠ 0 there).
+std::optional<Tree> over_common_denominator(const Tree& sum_of_terms) {
+  if (building_common_denominator) return std::nullopt;
+  const Tree* divisor = divisor_sum(sum_of_terms);
+  if (divisor == nullptr) return std::nullopt;
+  struct Building {
+    Building() { building_common_denominator = true; }
+    ~Building() { building_common_denominator = false; }
+  } building;
+  std::vector<Tree> numerator;
+  for (const Tree& term : sum_of_terms.kids) numerator.push_back(product({term, *divisor}));
+  Tree together = product({sum(std::move(numerator)), power(*divisor, -1, true)});
+  if (written_size(together) < written_size(sum_of_terms)) return together;
+  return std::nullopt;
 }
 
 /// e^argument: e^(ln x) = x and e^(c·ln x) = x^c for x > 0.

@@ -196,6 +196,16 @@ TEST(Simplify, MultipliesOutASumOnlyWhereThatIsSmaller) {
   EXPECT_EQ(simplified("x * (x + 1)"), "x * (x + 1)");
 }
 
+// A sum with a fraction of a sum goes over the common denominator only where that is strictly
+// smaller (bench-fit's Keijzer-5: x·z·(x/(x/3 − 10/3) − 3)/y², size 17, for 30·x·z/((x − 10)·y²),
+// size 13): the numerator's x terms cancel, x − 2·(0.5·x − 5) = 10. 1 + 2/(x + 1) and x + 1/(y + 1) stay.
+TEST(Simplify, AddsOverACommonDenominatorOnlyWhereThatIsSmaller) {
+  EXPECT_EQ(simplified("x / (0.5 * x - 5) - 2"), "10 / (0.5 * x - 5)");
+  EXPECT_EQ(simplified("x * y * (x / (0.5 * x - 5) - 2)"), "10 * x * y / (0.5 * x - 5)");
+  EXPECT_EQ(simplified("1 + 2 / (x + 1)"), "2 / (x + 1) + 1");
+  EXPECT_EQ(simplified("x + 1 / (y + 1)"), "x + 1 / (y + 1)");
+}
+
 TEST(AgreesOn, TellsAnEqualRewriteFromADomainChange) {
   const std::vector<double> xs{-2, -0.5, 0.25, 1, 3};
   const std::vector<std::span<const double>> columns{xs};
