@@ -213,6 +213,27 @@ std::optional<std::vector<long long>> integer_relation(std::span<const double> x
   return std::nullopt;
 }
 
+std::optional<expr::Node> exact_rational(double value) {
+  constexpr long long kLargestNumerator = 32767, kLargestDenominator = 255;  // what a node holds
+  if (!std::isfinite(value) || value == 0) return std::nullopt;
+  // Continued-fraction convergents p/q of |value|, until one is within the window.
+  long long p0 = 0, q0 = 1, p1 = 1, q1 = 0;
+  double rest = std::abs(value);
+  for (int term = 0; term < 40; ++term) {
+    const double whole = std::floor(rest);
+    if (whole > static_cast<double>(kLargestNumerator)) return std::nullopt;
+    const long long a = static_cast<long long>(whole);
+    const long long p = a * p1 + p0, q = a * q1 + q0;
+    if (p > kLargestNumerator || q > kLargestDenominator) return std::nullopt;
+    if (std::abs(static_cast<double>(p) / static_cast<double>(q) - std::abs(value)) <= kIdentifyWindow * std::abs(value))
+      return expr::exact_constant(static_cast<int>(value < 0 ? -p : p), static_cast<int>(q), expr::Symbol::one);
+    p0 = p1, q0 = q1, p1 = p, q1 = q;
+    if (rest - whole <= 0) return std::nullopt;
+    rest = 1 / (rest - whole);
+  }
+  return std::nullopt;
+}
+
 std::vector<Genome> elementary_constants(double value) {
   std::vector<Genome> out;
   if (!std::isfinite(value) || value == 0) return out;

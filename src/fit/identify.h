@@ -21,6 +21,11 @@ namespace specula::fit {
 std::optional<std::vector<long long>> integer_relation(std::span<const double> x, long long max_coefficient,
                                                        double tolerance);
 
+/// The rational p/q within 1e-9 (relative) of `value` with the smallest q ≤ 255 (|p| ≤ 32767, what
+/// an exact constant holds), from its continued fraction: 1/30 for 0.0333333333, where snapping's
+/// q ≤ 12 stops. Nothing for 0, a non-finite value, or none so near.
+std::optional<expr::Node> exact_rational(double value);
+
 /// The closed forms near `value` (within 1e-9 relative), simplest first, each a constant-only
 /// subtree of exact constants (expr::exact_constant under pow, exp, log) in postfix — none when
 /// `value` is 0, not finite, or a simple multiple p/q·s that snap_candidates() already offers.

@@ -47,7 +47,8 @@ void add_candidate(std::vector<Node>& out, double value, int denominator, Symbol
 }
 
 /// What a constant of `value` is tried as, simplest first: snap_candidates() as the mode allows,
-/// then (in a formula that fits exactly) the elementary closed forms (identify.h).
+/// then (in a formula that fits exactly) a rational with a larger denominator and the elementary
+/// closed forms (identify.h).
 std::vector<Genome> candidates(double value, Constants constants, bool fits_exactly) {
   std::vector<Genome> out;
   for (const Node& candidate : snap_candidates(value)) {
@@ -55,8 +56,13 @@ std::vector<Genome> candidates(double value, Constants constants, bool fits_exac
     if (candidate.symbol != Symbol::one && (constants == Constants::integer || !fits_exactly)) continue;
     out.push_back({candidate});
   }
-  if (constants == Constants::fitted && fits_exactly)
-    for (Genome& form : elementary_constants(value)) out.push_back(std::move(form));
+  if (constants != Constants::fitted || !fits_exactly) return out;
+  // A short decimal (q dividing 1000: 1.05, not 21/20) reads better as the number it is.
+  const auto rational = exact_rational(value);
+  if (rational && 1000 % rational->denominator != 0 &&
+      std::ranges::none_of(out, [&](const Genome& c) { return c.front().value == rational->value; }))
+    out.push_back({*rational});
+  for (Genome& form : elementary_constants(value)) out.push_back(std::move(form));
   return out;
 }
 

@@ -2,6 +2,8 @@
 // a constant the data does not make simple stays as fitted.
 #include "fit/snap.h"
 
+#include "fit/identify.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,6 +89,25 @@ TEST(Snapped, SymbolsOnlyWhereTheFormulaFitsExactly) {
   Genome h = snap_genome("1 * x");
   fit_constants(h, exact.rows, Constants::fitted);
   EXPECT_EQ(snapped_text(snapped(h, exact.rows, rounding()).genome), "3 * log(2) / 2 * x");
+}
+
+// Keijzer-5 on seed 3 ended as z/y²/(0.0333333 − 1/3/x), the truth with 1/30 beyond snapping's
+// q ≤ 12 (SRBench's 6-decimal rounding judged 0.0333333 not 1/30). In a formula that fits exactly
+// a rational with q ≤ 255 within 10⁻⁹ is tried; in a rough one it is not (the control), and a
+// constant near no such rational stays.
+TEST(Snapped, ARationalWithALargerDenominatorOnlyWhereTheFormulaFitsExactly) {
+  const Data1 exact(0, 4, 21, [](double x) { return x / 30 + 2; });
+  Genome g = snap_genome("0.03 * x + 2.1");
+  fit_constants(g, exact.rows, Constants::fitted);
+  EXPECT_EQ(snapped_text(snapped(g, exact.rows, rounding()).genome), "1 / 30 * x + 2");
+  const Data1 rough(0, 4, 21, [](double x) { return x / 30 + 2 + 0.01 * std::sin(9 * x); });
+  Genome h = snap_genome("0.03 * x + 2.1");
+  fit_constants(h, rough.rows, Constants::fitted);
+  EXPECT_EQ(snapped_text(snapped(h, rough.rows, rounding()).genome).find("30"), std::string::npos);
+  EXPECT_TRUE(exact_rational(1.0 / 30));
+  EXPECT_EQ(exact_rational(-7.0 / 254)->denominator, 254);
+  EXPECT_FALSE(exact_rational(std::numbers::pi / 10));
+  EXPECT_FALSE(exact_rational(1.0 / 30 + 1e-7));
 }
 
 TEST(Snapped, TheBloatedFitReadsWithAThirdAndThreePi) {
