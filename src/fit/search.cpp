@@ -578,7 +578,7 @@ class Search {
     Archive snapped_archive(rounding_noise(problem_));
     for (const Individual* x : unsnapped) snapped_archive.offer(as_printed(*x));
     for (const Individual* x : unsnapped) {
-      const Individual y = simplified_snap(snapped(x->genome, problem_.train, settings));
+      const Individual y = simplified_snap(snapped(x->genome, problem_.train, settings), settings);
       snapped_archive.offer_within(y, settings.tolerance, settings.floor);
       if (auto polynomial = expanded(y, x->loss, settings)) snapped_archive.offer_within(*polynomial, settings.tolerance, settings.floor);
     }
@@ -586,13 +586,33 @@ class Search {
   }
 
   // A snapped formula simplified again (an exact 0 drops its term), as the front ranks it.
-  Individual simplified_snap(Snapped s) const {
-    std::vector<double> values(problem_.train.size());
-    expr::evaluate_batch(expr::Expression(s.genome, data_.variables), problem_.train.columns, values);
-    if (auto simple = simplified(s.genome, values, problem_.train, problem_.rules)) s.genome = std::move(*simple);
+  // Where the simplification changes it, the simplified formula is snapped once more: merging
+  // constants can make a free scale (x/(x/3 − 10/3) − 3 became 10/(x/3 − 10/3), whose scale held
+  // at 1 reads 30/(x − 10)).
+  Individual simplified_snap(Snapped s, const SnapSettings& settings) const {
+    if (auto simple = simplified_on_rows(s.genome)) {
+      s = snapped(with_free_coefficients(std::move(*simple)), problem_.train, settings);
+      if (auto again = simplified_on_rows(s.genome)) s.genome = std::move(*again);
+    }
     Individual y{s.genome, canonical_key(s.genome), s.loss, problem_.weights.of(s.genome)};
     y.cancels = problem_.cancels(y.genome);
     return as_printed(std::move(y));
+  }
+
+  // g with its exact rationals freed (at their values) but for exponents: snapping decides anew
+  // (a free scale among them is held at 1 again). Multiples of π and the like stay.
+  static Genome with_free_coefficients(Genome g) {
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const bool exponent = i + 1 < g.size() && g[i + 1].op == Op::pow;
+      if (expr::is_exact(g[i]) && g[i].symbol == expr::Symbol::one && !exponent) g[i] = expr::Node{Op::constant, 0, g[i].value};
+    }
+    return g;
+  }
+
+  std::optional<Genome> simplified_on_rows(const Genome& g) const {
+    std::vector<double> values(problem_.train.size());
+    expr::evaluate_batch(expr::Expression(g, data_.variables), problem_.train.columns, values);
+    return simplified(g, values, problem_.train, problem_.rules);
   }
 
   // x with its printed loss: its constants rounded to kPrintedDigits, on the training rows.
@@ -620,7 +640,7 @@ class Search {
       return std::nullopt;
     const Snapped fitted = refitted(dense_polynomial(*degree, variables), problem_.train, settings);
     if (!(fitted.loss <= loss * (1 + settings.tolerance) + settings.floor)) return std::nullopt;
-    Individual y = simplified_snap(snapped(fitted.genome, problem_.train, settings));
+    Individual y = simplified_snap(snapped(fitted.genome, problem_.train, settings), settings);
     if (y.size > options_.max_size) return std::nullopt;
     return y;
   }

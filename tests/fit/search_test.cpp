@@ -529,6 +529,20 @@ TEST(Search, APolynomialFoundFactoredIsChosenExpandedWhereItsCoefficientsSnap) {
   EXPECT_NE(control.find("0.605829"), std::string::npos) << control;
 }
 
+// bench-fit's Keijzer-5 seed 2 ended as 10·x·z/y²/(1/3·x − 10/3), size 15 > 13: found as
+// x/(x/3 − 10/3) − 3, whose x terms cancel only once snapped, and simplified after the snap, so the
+// free scale of 10/(x/3 − 10/3) was never held. The simplified snap is snapped again.
+TEST(Search, AFormulaSimplifiedAfterItsSnapIsSnappedAgain) {
+  const Data d = sampled("30 / (x - 10)", 0, 5, 21);
+  Options o = quick(0);
+  o.enumerate_max_size = 1;
+  o.operators = parse_operators("+,-,*,/");
+  o.starts = {"x / (0.3 * x - 3.2) - 2.9"};
+  const Result r = search(d, o);
+  EXPECT_EQ(expr::to_infix(r.front[r.chosen].formula), "30 / (x - 10)");
+  EXPECT_EQ(r.front[r.chosen].size, 5);
+}
+
 // The outside check's bad formulas, given as starts, do not reach the front: cancellations (of
 // constants, of huge terms), garbage terms, integers and halves in disguise.
 const std::vector<std::string> kBadStarts = {
