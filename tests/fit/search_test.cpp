@@ -44,6 +44,15 @@ Options quick(std::int64_t generations = 10) {
   return o;
 }
 
+// Only `start` and the formulas of one node compete (no genetic search).
+Options from_start(const char* operators, const char* start) {
+  Options o = quick(0);
+  o.enumerate_max_size = 1;
+  o.operators = parse_operators(operators);
+  o.starts = {start};
+  return o;
+}
+
 double rms_of(const expr::Expression& f, const Data& d) {
   std::vector<double> predicted(d.target.size());
   const std::vector<std::span<const double>> columns(d.columns.begin(), d.columns.end());
@@ -489,10 +498,7 @@ TEST(Search, ByDefaultASnapCostsNoMeasurableAccuracy) {
 // The control: with snapping off the decimals stay.
 std::pair<std::string, int> chosen_for_the_normal_density(bool snap) {
   const Data d = sampled("exp(-x^2/2) / sqrt(2*pi)", -2, 2, 41);
-  Options o = quick(0);
-  o.enumerate_max_size = 1;
-  o.operators = parse_operators("+,*,^");
-  o.starts = {"0.4 * 0.6 ^ (x * x)"};
+  Options o = from_start("+,*,^", "0.4 * 0.6 ^ (x * x)");
   o.snap = snap;
   const Result r = search(d, o);
   return {expr::to_infix(r.front[r.chosen].formula), r.front[r.chosen].size};
@@ -515,10 +521,7 @@ TEST(Search, ElementaryConstantsPrintInClosedForm) {
 // the factored form stays the choice.
 std::string chosen_for_a_factored_quartic(const char* operators) {
   const Data d = sampled("4*x^4 + 3*x^3 + 2*x^2 + x", -1, 1, 21);
-  Options o = quick(0);
-  o.enumerate_max_size = 1;
-  o.operators = parse_operators(operators);
-  o.starts = {"4 * x * (x + 0.6) * ((x + 0.07) * (x + 0.07) + 0.4)"};
+  Options o = from_start(operators, "4 * x * (x + 0.6) * ((x + 0.07) * (x + 0.07) + 0.4)");
   const Result r = search(d, o);
   return expr::to_infix(r.front[r.chosen].formula);
 }
@@ -534,10 +537,7 @@ TEST(Search, APolynomialFoundFactoredIsChosenExpandedWhereItsCoefficientsSnap) {
 // free scale of 10/(x/3 − 10/3) was never held. The simplified snap is snapped again.
 TEST(Search, AFormulaSimplifiedAfterItsSnapIsSnappedAgain) {
   const Data d = sampled("30 / (x - 10)", 0, 5, 21);
-  Options o = quick(0);
-  o.enumerate_max_size = 1;
-  o.operators = parse_operators("+,-,*,/");
-  o.starts = {"x / (0.3 * x - 3.2) - 2.9"};
+  Options o = from_start("+,-,*,/", "x / (0.3 * x - 3.2) - 2.9");
   const Result r = search(d, o);
   EXPECT_EQ(expr::to_infix(r.front[r.chosen].formula), "30 / (x - 10)");
   EXPECT_EQ(r.front[r.chosen].size, 5);
@@ -577,10 +577,7 @@ TEST(Search, BadFormulasGivenAsStartsNeverReachTheFront) {
 // the front: 6 of its digits are rounding on every row.
 TEST(Search, ACancellingStartStaysOffTheFrontEvenWhereItFitsBest) {
   const Data d = sampled("1573607.28 - 0.99999936 ^ x * 1573606.29", 0, 1, 21);
-  Options o = quick(0);
-  o.enumerate_max_size = 1;
-  o.operators = parse_operators("+,-,*,^");
-  o.starts = {"1573607.28 - 0.99999936 ^ x * 1573606.29"};
+  Options o = from_start("+,-,*,^", "1573607.28 - 0.99999936 ^ x * 1573606.29");
   o.snap = false;
   const Result r = search(d, o);
   for (const auto& c : r.front) EXPECT_LE(c.size, 1) << expr::to_infix(c.formula);
