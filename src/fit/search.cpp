@@ -205,6 +205,8 @@ class Archive {
   // Differences in loss below `noise` are rounding, not improvement.
   explicit Archive(double noise) : noise_(noise) {}
 
+  bool lower(double a, double b) const { return a < b * (1 - kLowerBy) - noise_; }
+
   void offer(const Individual& x) {
     if (!std::isfinite(x.loss) || x.cancels) return;
     auto [it, inserted] = best_.try_emplace(x.size, x);
@@ -217,13 +219,14 @@ class Archive {
     const auto it = best_.find(x.size);
     if (it == best_.end() || x.loss <= it->second.loss * (1 + tolerance) + floor) best_.insert_or_assign(x.size, x);
   }
-  // Each size's best that beats every smaller one by more than rounding: by 10⁻⁶ of its error
-  // and by `noise` (as Individual::ranking() has it). (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
+  // Each size's best that beats the smaller ones by more than rounding, by 10⁻⁶ of its error and
+  // by `noise`: as fitted, or as printed (Individual::ranking()) — an exact polynomial over its
+  // factored form, whose printed roots are not exact; a fit finer than 6 digits print still shows. (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
   // 1105270 − 0.197243·(5603590 − n) for 0.197243·n + 0.250673.)
   std::vector<const Individual*> front() const {
     std::vector<const Individual*> out;
     for (const auto& [size, x] : best_)
-      if (out.empty() || x.ranking() < out.back()->ranking() * (1 - kLowerBy) - noise_) out.push_back(&x);
+      if (out.empty() || lower(x.loss, out.back()->loss) || lower(x.ranking(), out.back()->ranking())) out.push_back(&x);
     return out;
   }
 
