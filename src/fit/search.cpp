@@ -205,8 +205,6 @@ class Archive {
   // Differences in loss below `noise` are rounding, not improvement.
   explicit Archive(double noise) : noise_(noise) {}
 
-  bool lower(double a, double b) const { return a < b * (1 - kLowerBy) - noise_; }
-
   void offer(const Individual& x) {
     if (!std::isfinite(x.loss) || x.cancels) return;
     auto [it, inserted] = best_.try_emplace(x.size, x);
@@ -221,7 +219,8 @@ class Archive {
   }
   // Each size's best that beats the smaller ones by more than rounding, by 10⁻⁶ of its error and
   // by `noise`: as fitted, or as printed (Individual::ranking()) — an exact polynomial over its
-  // factored form, whose printed roots are not exact; a fit finer than 6 digits print still shows. (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
+  // factored form, whose printed roots are not exact; a fit finer than 6 digits print still shows.
+  // (A bigger formula whose error is lower by 10⁻⁹ of it gets there by rounding:
   // 1105270 − 0.197243·(5603590 − n) for 0.197243·n + 0.250673.)
   std::vector<const Individual*> front() const {
     std::vector<const Individual*> out;
@@ -231,6 +230,8 @@ class Archive {
   }
 
  private:
+  bool lower(double a, double b) const { return a < b * (1 - kLowerBy) - noise_; }
+
   double noise_;
   std::map<int, Individual> best_;
 };
