@@ -71,22 +71,32 @@ std::size_t monomial_count(int degree, std::uint32_t variables) {
   return static_cast<std::size_t>(std::llround(count));
 }
 
-Genome dense_polynomial(int degree, std::uint32_t variables) {
-  std::vector<std::vector<int>> terms;
+std::vector<std::vector<int>> monomial_exponents(int degree, std::uint32_t variables) {
+  std::vector<std::vector<int>> out;
   std::vector<int> exponents;
-  monomials(degree, variables, exponents, terms);
+  monomials(degree, variables, exponents, out);
+  return out;
+}
+
+void append_monomial(Genome& out, const std::vector<int>& exponents, bool onto) {
+  for (std::uint32_t v = 0; v < exponents.size(); ++v) {
+    if (exponents[v] == 0) continue;
+    out.push_back(Node{Op::variable, v, 0});
+    if (exponents[v] > 1) {
+      out.push_back(expr::exact_constant(exponents[v], 1, expr::Symbol::one));
+      out.push_back(Node{Op::pow, 0, 0});
+    }
+    if (onto) out.push_back(Node{Op::mul, 0, 0});
+    onto = true;
+  }
+}
+
+Genome dense_polynomial(int degree, std::uint32_t variables) {
+  const auto terms = monomial_exponents(degree, variables);
   Genome out;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     out.push_back(Node{Op::constant, 0, 1.0});
-    for (std::uint32_t v = 0; v < variables; ++v) {
-      if (terms[t][v] == 0) continue;
-      out.push_back(Node{Op::variable, v, 0});
-      if (terms[t][v] > 1) {
-        out.push_back(expr::exact_constant(terms[t][v], 1, expr::Symbol::one));
-        out.push_back(Node{Op::pow, 0, 0});
-      }
-      out.push_back(Node{Op::mul, 0, 0});
-    }
+    append_monomial(out, terms[t], true);
     if (t > 0) out.push_back(Node{Op::add, 0, 0});
   }
   return out;

@@ -4,6 +4,7 @@
 // roots written out; the coefficients of the expanded form snap where the roots cannot.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "genome.h"
 
@@ -15,6 +16,14 @@ std::optional<int> polynomial_degree(const Genome& g);
 
 /// How many monomials of total degree ≤ `degree` there are in `variables` variables.
 std::size_t monomial_count(int degree, std::uint32_t variables);
+
+/// Every exponent vector (eᵥ per variable) of total degree ≤ `degree`, lowest first.
+std::vector<std::vector<int>> monomial_exponents(int degree, std::uint32_t variables);
+
+/// Appends the factors xᵥ^eᵥ of one monomial (powers above 1 as exact-exponent ^), each
+/// multiplied onto what precedes it when `onto` (a coefficient already written); otherwise the
+/// first stands alone. Appends nothing for the constant monomial.
+void append_monomial(Genome& out, const std::vector<int>& exponents, bool onto);
 
 /// Σ c·Πxᵥ^eᵥ over every monomial of total degree ≤ `degree` (constants free, at 1; powers
 /// above 1 as exact-exponent ^).

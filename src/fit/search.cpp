@@ -19,6 +19,7 @@
 #include "genome.h"
 #include "simplified.h"
 #include "snap.h"
+#include "transformed.h"
 #include "specula/fit/fit.h"
 #include "specula/interrupt/interrupt.h"
 
@@ -530,11 +531,15 @@ class Search {
 
   Result run() {
     auto fitted = enumerate();
-    for (const Genome& g : starts_) {
+    const auto start_from = [&](const Genome& g) {
       fitted.push_back(problem_.evaluate(g, canonical_key(g)));
       archive_.offer(fitted.back());
       ++evaluations_;
-    }
+    };
+    for (const Genome& g : starts_) start_from(g);
+    if (options_.transformed_polynomials && problem_.constants != Constants::none)
+      for (const Genome& g : transformed_polynomials(problem_.train, problem_.rules.operators, problem_.weights))
+        if (alphabet_.fits(g)) start_from(g);
     if (!stopped()) check_budget(false);  // e.g. a cancel asked for by the last report
     if (options_.max_generations == 0) stopped_by_ = StopReason::generations;
     if (!stopped()) evolve(fitted);

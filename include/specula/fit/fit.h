@@ -115,6 +115,10 @@ struct Options {
   int population = 200;        // per island
   int enumerate_max_size = 11;  // exhaustive up to this size …
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
+  /// Formulas read off the data before the genetic search (docs/fit.md, "Transformed
+  /// polynomials"): P, 1/P, exp(P) or log(P) where the target's transform is a polynomial P to
+  /// rounding, by least squares over the monomials; they join the front and the populations.
+  bool transformed_polynomials = true;
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
   /// Constant snapping (docs/fit.md): each front formula's constants tried as simple numbers (0,
