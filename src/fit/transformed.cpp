@@ -30,6 +30,10 @@ struct Term {
   double coefficient;
 };
 
+bool is_constant(const Term& t) {
+  return std::ranges::all_of(t.exponents, [](int e) { return e == 0; });
+}
+
 // The rows the polynomials are fitted on: all of them, or kMostRows evenly spaced.
 std::vector<std::size_t> picked_rows(std::size_t n) {
   const std::size_t m = std::min(n, kMostRows);
@@ -77,6 +81,13 @@ Eigen::MatrixXd monomial_columns(const Rows& rows, const std::vector<std::size_t
   return A;
 }
 
+// A's columns at `kept`.
+Eigen::MatrixXd columns_at(const Eigen::MatrixXd& A, const std::vector<Eigen::Index>& kept) {
+  Eigen::MatrixXd out(A.rows(), static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k) out.col(static_cast<Eigen::Index>(k)) = A.col(kept[k]);
+  return out;
+}
+
 // The least-squares coefficients of b over A's columns (scaled to unit norm for the solve),
 // where they fit b to rounding.
 std::optional<Eigen::VectorXd> exact_fit(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
@@ -96,10 +107,8 @@ std::vector<Term> significant_terms(const Eigen::MatrixXd& A, const Eigen::Vecto
   std::vector<Eigen::Index> kept;
   for (Eigen::Index t = 0; t < c.size(); ++t)
     if (std::abs(c[t]) * A.col(t).norm() > kNegligible * b.norm()) kept.push_back(t);
-  Eigen::MatrixXd B(A.rows(), static_cast<Eigen::Index>(kept.size()));
-  for (std::size_t k = 0; k < kept.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = A.col(kept[k]);
   std::vector<Term> out;
-  if (const auto pruned = kept.empty() ? std::nullopt : exact_fit(B, b)) {
+  if (const auto pruned = kept.empty() ? std::nullopt : exact_fit(columns_at(A, kept), b)) {
     for (std::size_t k = 0; k < kept.size(); ++k)
       out.push_back({exponents[static_cast<std::size_t>(kept[k])], (*pruned)[static_cast<Eigen::Index>(k)]});
   } else {
@@ -113,14 +122,13 @@ bool is_unit(double c) { return std::abs(c - 1) <= kUnit; }
 // Σ (cᵢ/k)·mᵢ, the constant term last: a coefficient of 1 left out, one of −1 subtracted where −
 // is an operator.
 Genome sum_over(std::vector<Term> terms, double k, bool subtract) {
-  std::ranges::stable_partition(terms, [](const Term& t) { return std::ranges::any_of(t.exponents, [](int e) { return e > 0; }); });
+  std::ranges::stable_partition(terms, [](const Term& t) { return !is_constant(t); });
   Genome out;
   for (std::size_t t = 0; t < terms.size(); ++t) {
     const double c = terms[t].coefficient / k;
-    const bool constant = std::ranges::all_of(terms[t].exponents, [](int e) { return e == 0; });
     const bool minus = t > 0 && subtract && is_unit(-c);
     if (is_unit(c) || minus) {
-      if (constant) out.push_back(expr::exact_constant(1, 1, expr::Symbol::one));
+      if (is_constant(terms[t])) out.push_back(expr::exact_constant(1, 1, expr::Symbol::one));
       append_monomial(out, terms[t].exponents, false);
     } else {
       out.push_back(Node{Op::constant, 0, c});
@@ -216,8 +224,9 @@ std::optional<Found> polynomial_under(Outer outer, const Rows& rows, const std::
   return std::nullopt;
 }
 
-// The unit null vector of the columns of M (scaled to unit norm for the decomposition), where
-// M has one, to rounding, and only one.
+// The null vector of M, its largest coefficient ±1, where M has one to rounding and only one
+// (the SVD of M with its columns scaled to unit norm: the smallest singular value within kExact
+// of the largest, the next one not within kNegligible).
 std::optional<Eigen::VectorXd> null_vector(const Eigen::MatrixXd& M) {
   if (!M.allFinite() || M.cols() < 2) return std::nullopt;
   const Eigen::VectorXd norms = M.colwise().norm().transpose().unaryExpr([](double n) { return n > 0 ? n : 1.0; });
@@ -242,13 +251,6 @@ bool fits_ratio(const Rows& rows, const std::vector<std::size_t>& picked, const 
     scale += y * y;
   }
   return error <= kExact * kExact * scale;
-}
-
-// A's columns at `kept`.
-Eigen::MatrixXd columns_at(const Eigen::MatrixXd& A, const std::vector<Eigen::Index>& kept) {
-  Eigen::MatrixXd out(A.rows(), static_cast<Eigen::Index>(kept.size()));
-  for (std::size_t k = 0; k < kept.size(); ++k) out.col(static_cast<Eigen::Index>(k)) = A.col(kept[k]);
-  return out;
 }
 
 // P/Q over the monomials of P (degree dp) and Q (degree dq ≥ 1): y·Q − P = 0 on every row, so
@@ -286,10 +288,7 @@ std::optional<Found> ratio_of_degrees(int dp, int dq, const Rows& rows, const st
     if (coefficient == 0) continue;
     (terms[k] < numerator_count ? f.numerator : f.denominator).push_back({exponents[index], coefficient});
   }
-  const bool varies = std::ranges::any_of(f.denominator, [](const Term& t) {
-    return std::ranges::any_of(t.exponents, [](int e) { return e > 0; });
-  });
-  if (f.numerator.empty() || !varies) return std::nullopt;
+  if (f.numerator.empty() || std::ranges::all_of(f.denominator, is_constant)) return std::nullopt;
   return f;
 }
 

@@ -116,8 +116,8 @@ struct Options {
   int enumerate_max_size = 11;  // exhaustive up to this size …
   int enumerate_limit = 20000;  // … or this many distinct forms, whichever comes first
   /// Formulas read off the data before the genetic search (docs/fit.md, "Transformed
-  /// polynomials"): P, 1/P, exp(P) or log(P) where the target's transform is a polynomial P to
-  /// rounding, by least squares over the monomials; they join the front and the populations.
+  /// polynomials"): a polynomial P, exp(P), log(P) or a ratio P/Q that fits the target to
+  /// rounding, by least squares over the monomials; they join the front (not the populations).
   bool transformed_polynomials = true;
   Choice choice = Choice::parsimonious;
   double choose_factor = 1.5;
