@@ -88,12 +88,17 @@ Eigen::MatrixXd columns_at(const Eigen::MatrixXd& A, const std::vector<Eigen::In
   return out;
 }
 
+// The norm of each of A's columns (1 for a column of zeros): the scaling both solves divide by.
+Eigen::VectorXd column_norms(const Eigen::MatrixXd& A) {
+  return A.colwise().norm().transpose().unaryExpr([](double n) { return n > 0 ? n : 1.0; });
+}
+
 // The least-squares coefficients of b over A's columns (scaled to unit norm for the solve),
 // where they fit b to rounding.
 std::optional<Eigen::VectorXd> exact_fit(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
   const double scale = b.norm();
   if (!(scale > 0) || !A.allFinite()) return std::nullopt;
-  const Eigen::VectorXd norms = A.colwise().norm().transpose().unaryExpr([](double n) { return n > 0 ? n : 1.0; });
+  const Eigen::VectorXd norms = column_norms(A);
   const Eigen::VectorXd c =
       (A * norms.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(b).cwiseQuotient(norms);
   if (!c.allFinite() || !((A * c - b).norm() <= kExact * scale)) return std::nullopt;
@@ -229,7 +234,7 @@ std::optional<Found> polynomial_under(Outer outer, const Rows& rows, const std::
 // of the largest, the next one not within kNegligible).
 std::optional<Eigen::VectorXd> null_vector(const Eigen::MatrixXd& M) {
   if (!M.allFinite() || M.cols() < 2) return std::nullopt;
-  const Eigen::VectorXd norms = M.colwise().norm().transpose().unaryExpr([](double n) { return n > 0 ? n : 1.0; });
+  const Eigen::VectorXd norms = column_norms(M);
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(M * norms.cwiseInverse().asDiagonal(), Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   const Eigen::Index n = sigma.size();
